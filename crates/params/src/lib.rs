@@ -1,0 +1,51 @@
+//! The mathematics of perspective shadow-map reparameterisation: every warp parameter and
+//! closed-form aliasing error of five papers, in f64, with their domains in the types.
+//!
+//! | module | paper |
+//! |---|---|
+//! | [`lispsm`], [`logarithmic`] | [LiSPSM] Wimmer, Scherzer, Purgathofer, *Light Space Perspective Shadow Maps*, EGSR 2004, doi 10.2312/EGWR/EGSR04/143-151; the logarithmic ideal after Lloyd et al., ACM TOG 27(4), 2008 |
+//! | [`cad`], [`splits`], [`bias`], [`vsm`] | [CAD] Barroso & Celes, *Improved Real-Time Shadow Mapping for CAD Models*, SIBGRAPI 2007, doi 10.1109/SIBGRAPI.2007.36 |
+//! | [`gmnpr`] | [GMNPR] *Theory to Practice: Generalized Minimum-Norm Perspective Shadow Maps*, ICEC 2007, LNCS 4740, 66–78 |
+//! | [`model`] | the 2-D view-frustum model shared by [CAD] eqs. 10–12 and [GMNPR] eq. 2 |
+//! | [`rule`] | all parameter choices side by side, and the true minimax of the model |
+//!
+//! [PSM] (Stamminger & Drettakis, SIGGRAPH 2002) and [CG06] (Chong & Gortler, Harvard TR-11-06)
+//! enter through the limits `n = zn` of [`lispsm`] and through later crates.
+//!
+//! The reference for every formula is the project's `formulas.md` (in `shared/docs/`): it
+//! reconstructs the formulas from the OCR'd papers, corrects 19 OCR errors and gives the stable
+//! forms used here. Each function's documentation cites paper, equation and the section of that file.
+//!
+//! # Conventions
+//! * γ ([LiSPSM], [CAD]) = θ ([GMNPR]) is the smallest angle between light and view directions,
+//!   `0 ≤ γ ≤ π/2`; π/2 is the ideal case. φ is half the field of view in the light–view plane.
+//! * Distances are in one world unit; only ratios matter.
+//! * The warp is described by λ = n'/(f' − n') ([`WarpParameter`]): λ = ∞ is the uniform map.
+//!   Functions in a paper's own variables (`n` of [LiSPSM], `n'` of [CAD]) accept `f64::INFINITY`
+//!   for "uniform" where the paper does.
+//! * Error normalisations: [LiSPSM]'s `dp/ds = (1/z)·dz/ds` (screen `[0, 1]`); [GMNPR]'s
+//!   `F = dp/ds / tan φ` (screen `[−1, 1]`); [CAD]'s `m_z = (res_c/res_l)·F/2`.
+//!
+//! # Domains
+//! A bad input is an `Err(ParamError)` naming the parameter, never a NaN. Near the singular points
+//! the stable forms of formulas.md §9 are used: γ = 0 exactly gives `f64::INFINITY` for parameters
+//! (meaning "uniform") and for errors (the view axis collapses onto one shadow-map row: unbounded);
+//! θ at and around φ, θ_0 and θ1 are evaluated without `tan θ`; `f/n` from `1 + 1e-9` to `1e12`
+//! without cancellation in `f − n`, `√(f/n) − 1` or `ln(f/n)`.
+
+pub mod bias;
+pub mod cad;
+mod domain;
+mod error;
+pub mod gmnpr;
+pub mod lispsm;
+pub mod logarithmic;
+pub mod model;
+pub mod rule;
+pub mod splits;
+pub mod vsm;
+
+pub use domain::{DepthRange, HalfFov, LightAngle, WarpParameter};
+pub use error::ParamError;
+pub use model::{FrustumModel, ModelCase};
+pub use rule::ParameterRule;
