@@ -70,11 +70,24 @@ mod tests {
     #[test]
     fn table_1_of_the_cad_survey() {
         let (z1, z2) = (0.25, 0.75);
-        assert_eq!(DepthBias::Constant { offset: 0.01 }.z_map(z1, z2).unwrap(), 0.26);
+        assert_eq!(
+            DepthBias::Constant { offset: 0.01 }.z_map(z1, z2).unwrap(),
+            0.26
+        );
         assert_eq!(DepthBias::SecondDepth.z_map(z1, z2).unwrap(), z2);
         assert_eq!(DepthBias::Midpoint.z_map(z1, z2).unwrap(), 0.5);
-        assert_eq!(DepthBias::DualDepth { max_bias: 0.125 }.z_map(z1, z2).unwrap(), 0.375);
-        assert_eq!(DepthBias::DualDepth { max_bias: 1.0 }.z_map(z1, z2).unwrap(), 0.5);
+        assert_eq!(
+            DepthBias::DualDepth { max_bias: 0.125 }
+                .z_map(z1, z2)
+                .unwrap(),
+            0.375
+        );
+        assert_eq!(
+            DepthBias::DualDepth { max_bias: 1.0 }
+                .z_map(z1, z2)
+                .unwrap(),
+            0.5
+        );
     }
 
     #[test]
@@ -82,7 +95,12 @@ mod tests {
         let inf = f64::INFINITY;
         assert_eq!(DepthBias::SecondDepth.z_map(0.5, inf).unwrap(), inf);
         assert_eq!(DepthBias::Midpoint.z_map(0.5, inf).unwrap(), inf);
-        assert_eq!(DepthBias::DualDepth { max_bias: 0.25 }.z_map(0.5, inf).unwrap(), 0.75);
+        assert_eq!(
+            DepthBias::DualDepth { max_bias: 0.25 }
+                .z_map(0.5, inf)
+                .unwrap(),
+            0.75
+        );
     }
 
     #[test]

@@ -55,9 +55,12 @@ pub fn m_z(
         || "greater than 0".into(),
     )?;
     let depth = model.warp_depth(gamma);
-    ParamError::require("n_prime", n_prime, n_prime / depth >= f64::MIN_POSITIVE, || {
-        "greater than 0 (infinity means uniform)".into()
-    })?;
+    ParamError::require(
+        "n_prime",
+        n_prime,
+        n_prime / depth >= f64::MIN_POSITIVE,
+        || "greater than 0 (infinity means uniform)".into(),
+    )?;
     let warp = WarpParameter::from_positive(n_prime / depth);
     let error = model.view_axis_error(gamma, warp, z)?;
     Ok(resolution_ratio / (2.0 * model.half_fov().tan()) * error)
@@ -75,10 +78,16 @@ pub fn n1(model: &FrustumModel, gamma: LightAngle) -> f64 {
 /// The equal-error parameter of the narrow case ([CAD] eq. 13, second branch):
 /// `n'_2(γ) = (f + √(fn)) sin γ − b cos γ`. Raw: negative below [`gamma0`], where equal error is
 /// impossible.
+///
+/// Evaluated as `√(fn) sin γ − f sin(φ − γ)/cos φ`: the printed form subtracts two terms of size f
+/// to leave one of size `√(fn)`, losing `√(f/n)` ulps near γ_0; this form subtracts terms of size
+/// `√(fn)` only.
 #[must_use]
 pub fn n2(model: &FrustumModel, gamma: LightAngle) -> f64 {
     let range = model.range();
-    (range.far() + range.geometric_mean()) * gamma.sin() - model.far_half_height() * gamma.cos()
+    let phi = model.half_fov();
+    range.geometric_mean() * gamma.sin()
+        - range.far() * (phi.radians() - gamma.radians()).sin() / phi.cos()
 }
 
 /// The equal-error parameter of the branch that applies at γ ([CAD] eq. 13): [`n1`] for `γ ≥ φ`,
@@ -96,7 +105,11 @@ pub fn n_equal_error(model: &FrustumModel, gamma: LightAngle) -> f64 {
 #[must_use]
 pub fn gamma0(model: &FrustumModel) -> LightAngle {
     let range = model.range();
-    angle(model.far_half_height().atan2(range.far() + range.geometric_mean()))
+    angle(
+        model
+            .far_half_height()
+            .atan2(range.far() + range.geometric_mean()),
+    )
 }
 
 /// γ_lim, the angle at which the near and far faces of the view frustum start to overlap in the

@@ -467,19 +467,42 @@ mod tests {
         assert_eq!((g.sin(), g.cos()), (0.0, 1.0));
         assert!(g.is_parallel());
         assert!(!LightAngle::from_radians(1e-300).unwrap().is_parallel());
-        assert_eq!(LightAngle::from_degrees(90.5).unwrap_err().parameter(), "gamma");
-        assert_eq!(LightAngle::from_degrees(-0.1).unwrap_err().parameter(), "gamma");
-        assert_eq!(HalfFov::from_full_fov_degrees(180.0).unwrap_err().parameter(), "fov");
-        assert_eq!(HalfFov::from_full_fov_degrees(0.0).unwrap_err().parameter(), "fov");
+        assert_eq!(
+            LightAngle::from_degrees(90.5).unwrap_err().parameter(),
+            "gamma"
+        );
+        assert_eq!(
+            LightAngle::from_degrees(-0.1).unwrap_err().parameter(),
+            "gamma"
+        );
+        assert_eq!(
+            HalfFov::from_full_fov_degrees(180.0)
+                .unwrap_err()
+                .parameter(),
+            "fov"
+        );
+        assert_eq!(
+            HalfFov::from_full_fov_degrees(0.0).unwrap_err().parameter(),
+            "fov"
+        );
     }
 
     #[test]
     fn warp_parameter_domain() {
         assert!(WarpParameter::from_lambda(0.0).is_err());
         assert!(WarpParameter::from_lambda(f64::NAN).is_err());
-        assert!(WarpParameter::from_lambda(f64::INFINITY).unwrap().is_uniform());
+        assert!(
+            WarpParameter::from_lambda(f64::INFINITY)
+                .unwrap()
+                .is_uniform()
+        );
         assert_eq!(WarpParameter::UNIFORM.inverse_lambda(), 0.0);
-        assert_eq!(WarpParameter::from_near_distance(1.0, 0.0).unwrap_err().parameter(), "depth");
+        assert_eq!(
+            WarpParameter::from_near_distance(1.0, 0.0)
+                .unwrap_err()
+                .parameter(),
+            "depth"
+        );
     }
 
     #[test]
@@ -499,6 +522,9 @@ mod tests {
         }
         assert_eq!(WarpParameter::UNIFORM.warp(0.3).unwrap(), 0.3);
         assert_eq!(WarpParameter::UNIFORM.warp_slope(0.3).unwrap(), 1.0);
-        assert_eq!(WarpParameter::UNIFORM.warp(1.5).unwrap_err().parameter(), "tau");
+        assert_eq!(
+            WarpParameter::UNIFORM.warp(1.5).unwrap_err().parameter(),
+            "tau"
+        );
     }
 }

@@ -7,6 +7,7 @@
 //! `gamma` and errors name it so. `T = tan φ/tan θ` is never formed: every formula is evaluated in a
 //! division-free sin/cos form (formulas.md §9.6), so θ = π/2 and θ → 0 are exact.
 
+use crate::cad;
 use crate::domain::{LightAngle, WarpParameter};
 use crate::error::ParamError;
 use crate::model::{FrustumModel, ModelCase};
@@ -48,9 +49,7 @@ pub fn psi(model: &FrustumModel, gamma: LightAngle, lambda: f64) -> Result<f64, 
             let d = range.length() + (range.far() + range.near()) * t;
             1.0 / (tan_phi * d * lambda * (lambda + 1.0))
         }
-        ModelCase::Narrow => {
-            1.0 / tan_phi / (2.0 * range.far() * lambda * (lambda + 1.0)) / t
-        }
+        ModelCase::Narrow => 1.0 / tan_phi / (2.0 * range.far() * lambda * (lambda + 1.0)) / t,
     })
 }
 
@@ -98,25 +97,21 @@ pub fn lambda1(model: &FrustumModel, gamma: LightAngle) -> f64 {
 }
 
 /// λ2(θ), the equal-error parameter of [GMNPR] eq. 4 for `θ ∈ [0, φ]`:
-/// `λ2 = (f + √(fn))/(2f) · tan θ/tan φ − 1/2`, evaluated as
-/// `((f + √(fn)) sin θ − f tan φ cos θ)/(2 f tan φ cos θ)`. Raw: negative below θ_0, where no λ
-/// equalises the errors (formulas.md §9.5); `+∞` at θ = π/2.
+/// `λ2 = (f + √(fn))/(2f) · tan θ/tan φ − 1/2`, evaluated as `n'_2/(2 f tan φ cos θ)` with the
+/// stable `n'_2` of [`cad::n2`]. Raw: negative below θ_0, where no λ equalises the errors
+/// (formulas.md §9.5); `±∞` at θ = π/2, far outside its branch.
 #[must_use]
 pub fn lambda2(model: &FrustumModel, gamma: LightAngle) -> f64 {
-    let range = model.range();
-    let b = model.far_half_height();
-    let (sin, cos) = (gamma.sin(), gamma.cos());
-    ((range.far() + range.geometric_mean()) * sin - b * cos) / (2.0 * b * cos)
+    cad::n2(model, gamma) / (2.0 * model.far_half_height() * gamma.cos())
 }
 
 /// The equal-error λ of the branch that applies at θ ([GMNPR] eq. 4): `F(λ, θ, n) = F(λ, θ, f)`.
-/// Evaluated as `((n + √(fn)) sin θ − u(n))/d` (formulas.md §5.3), which is [`lambda1`] for `θ ≥ φ`
-/// and [`lambda2`] below. Raw: may be zero or negative below θ_0.
+/// Evaluated as `n'/d` with [CAD]'s `n'_1` or `n'_2` ([`cad::n_equal_error`]; the two papers' forms
+/// are the same, formulas.md §5.3), which is [`lambda1`] for `θ ≥ φ` and [`lambda2`] below. Raw:
+/// may be zero or negative below θ_0.
 #[must_use]
 pub fn lambda_equal_error(model: &FrustumModel, gamma: LightAngle) -> f64 {
-    let range = model.range();
-    let near_offset = model.near_plane_offset(gamma, range.near());
-    ((range.near() + range.geometric_mean()) * gamma.sin() - near_offset) / model.warp_depth(gamma)
+    cad::n_equal_error(model, gamma) / model.warp_depth(gamma)
 }
 
 /// λ2*(θ) = λ1(φ)/tan(πθ/(4φ)) = √(fn)/(2f)/tan(πθ/(4φ)) ([GMNPR] eq. 7), GMNPR's replacement for

@@ -198,7 +198,12 @@ mod tests {
         assert_eq!(dp_ds(r, 11.0, 0.5).unwrap_err().parameter(), "z");
         assert_eq!(dp_ds(r, 11.0, f64::NAN).unwrap_err().parameter(), "z");
         assert_eq!(n_general(1.0, 2.0, 1.0).unwrap_err().parameter(), "z1");
-        assert_eq!(n_delta_z(0.0, 1.0, LightAngle::PERPENDICULAR).unwrap_err().parameter(), "z0");
+        assert_eq!(
+            n_delta_z(0.0, 1.0, LightAngle::PERPENDICULAR)
+                .unwrap_err()
+                .parameter(),
+            "z0"
+        );
     }
 
     #[test]

@@ -132,8 +132,22 @@ mod tests {
             (SplitScheme::Uniform, 0, "partitions"),
             (SplitScheme::Practical { weight: 1.5 }, 3, "weight"),
             (SplitScheme::Practical { weight: f64::NAN }, 3, "weight"),
-            (SplitScheme::Adaptive { delta: 1.0, gamma: g }, 3, "delta"),
-            (SplitScheme::Adaptive { delta: f64::INFINITY, gamma: g }, 3, "delta"),
+            (
+                SplitScheme::Adaptive {
+                    delta: 1.0,
+                    gamma: g,
+                },
+                3,
+                "delta",
+            ),
+            (
+                SplitScheme::Adaptive {
+                    delta: f64::INFINITY,
+                    gamma: g,
+                },
+                3,
+                "delta",
+            ),
         ];
         for (scheme, k, name) in cases {
             assert_eq!(scheme.boundaries(r, k).unwrap_err().parameter(), name);
@@ -145,14 +159,20 @@ mod tests {
         let r = DepthRange::new(1.0, 1.0 + 1e-15).unwrap();
         let err = SplitScheme::Logarithmic.boundaries(r, 100).unwrap_err();
         assert_eq!(err.parameter(), "partitions");
-        assert_eq!(SplitScheme::Logarithmic.boundaries(r, 1).unwrap(), vec![1.0, 1.0 + 1e-15]);
+        assert_eq!(
+            SplitScheme::Logarithmic.boundaries(r, 1).unwrap(),
+            vec![1.0, 1.0 + 1e-15]
+        );
     }
 
     #[test]
     fn delta_is_clamped_to_the_logarithmic_ratio() {
         let r = DepthRange::new(1.0, 100.0).unwrap();
         let parallel = LightAngle::from_degrees(0.0).unwrap();
-        let adaptive = SplitScheme::Adaptive { delta: 50.0, gamma: parallel };
+        let adaptive = SplitScheme::Adaptive {
+            delta: 50.0,
+            gamma: parallel,
+        };
         let delta = adaptive.effective_delta(r, 3).unwrap();
         assert!((delta - 100f64.cbrt()).abs() < 1e-13);
         let b = adaptive.boundaries(r, 3).unwrap();

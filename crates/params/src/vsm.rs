@@ -95,6 +95,10 @@ mod tests {
         let exact = 1e-8;
         let shifted = ShiftedMoments::from_depths(0.95, &depths).unwrap();
         assert!((shifted.variance() - exact).abs() <= 1e-10 * exact);
+        #[expect(
+            clippy::cast_possible_truncation,
+            reason = "the test demonstrates what f32 moments lose"
+        )]
         let raw_f32: Vec<f32> = depths.iter().map(|&d| d as f32).collect();
         let m1 = (raw_f32[0] + raw_f32[1]) / 2.0;
         let m2 = (raw_f32[0] * raw_f32[0] + raw_f32[1] * raw_f32[1]) / 2.0;
@@ -111,7 +115,15 @@ mod tests {
         let p = m.lit_fraction(0.6, 0.0).unwrap();
         assert!((p - 0.5).abs() < 1e-12, "{p}");
         assert_eq!(m.lit_fraction(f64::NAN, 0.0).unwrap_err().parameter(), "t");
-        assert_eq!(m.lit_fraction(0.7, -1.0).unwrap_err().parameter(), "min_variance");
-        assert_eq!(ShiftedMoments::from_depths(0.5, &[]).unwrap_err().parameter(), "depths");
+        assert_eq!(
+            m.lit_fraction(0.7, -1.0).unwrap_err().parameter(),
+            "min_variance"
+        );
+        assert_eq!(
+            ShiftedMoments::from_depths(0.5, &[])
+                .unwrap_err()
+                .parameter(),
+            "depths"
+        );
     }
 }
