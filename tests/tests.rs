@@ -1,1 +1,8 @@
-//! Integration tests.
+//! Integration tests of the `shadowlab` binary, one binary for the whole tool (ripgrep's layout).
+//!
+//! * `params_cli` — `shadowlab params`: values against formulas.md §8, JSON shape, bad input.
+//! * `curves_cli` — `shadowlab curves`: every file written, byte-identical across runs, bad input.
+
+mod curves_cli;
+mod params_cli;
+mod support;

@@ -1,4 +1,4 @@
-//! The depth-bias family of the CAD survey's Table 1 ([CAD] eq. 1; formulas.md §4.1):
+//! The depth-bias family of the CAD survey's Table 1 (CAD eq. 1; formulas.md §4.1):
 //! `z_map = z1 + z_bias(z1, z2)`, with `z1` and `z2` the depths of the first and second surfaces
 //! seen from the light. A receiver at depth `z` is lit when `z ≤ z_map`.
 
@@ -57,7 +57,7 @@ impl DepthBias {
         }
     }
 
-    /// `z_map = z1 + z_bias(z1, z2)` ([CAD] eq. 1). Same domain as [`Self::z_bias`].
+    /// `z_map = z1 + z_bias(z1, z2)` (CAD eq. 1). Same domain as [`Self::z_bias`].
     pub fn z_map(&self, z1: f64, z2: f64) -> Result<f64, ParamError> {
         Ok(z1 + self.z_bias(z1, z2)?)
     }

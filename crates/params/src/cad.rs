@@ -1,6 +1,6 @@
 //! The CAD survey's generalised LiSPSM: Barroso & Celes, *Improved Real-Time Shadow Mapping for CAD
-//! Models*, SIBGRAPI 2007, doi 10.1109/SIBGRAPI.2007.36 ([CAD]; formulas.md §4.6–4.7). Its eqs. 10–13
-//! generalise [LiSPSM]'s optimum to any light angle γ in the 2-D model of [`crate::model`]; eqs. 14–18
+//! Models*, SIBGRAPI 2007, doi 10.1109/SIBGRAPI.2007.36 (CAD; formulas.md §4.6–4.7). Its eqs. 10–13
+//! generalise LiSPSM's optimum to any light angle γ in the 2-D model of [`crate::model`]; eqs. 14–18
 //! replace the equal-error branch by a smooth fall-back to the uniform map below a limit angle.
 //!
 //! Notation: `n', f'` are the warp frustum's near and far distances, `a = n tan φ`, `b = f tan φ`.
@@ -11,7 +11,7 @@ use crate::domain::{LightAngle, WarpParameter};
 use crate::error::ParamError;
 use crate::model::{FrustumModel, ModelCase};
 
-/// `z'(z)`: the distance from P's centre of the view-axis point at eye depth `z` ([CAD] eq. 10):
+/// `z'(z)`: the distance from P's centre of the view-axis point at eye depth `z` (CAD eq. 10):
 /// `n' + a cos γ + (z − n) sin γ` for `γ ≥ φ`, `n' + b cos γ + (z − f) sin γ` for `γ < φ`.
 /// `Err` names `n_prime` (must be > 0 and finite) or `z`.
 pub fn z_prime(
@@ -25,20 +25,20 @@ pub fn z_prime(
     Ok(n_prime + model.near_plane_offset(gamma, z))
 }
 
-/// `f'`: P's far distance ([CAD] eq. 11): `n' + (a + b) cos γ + (f − n) sin γ` for `γ ≥ φ`,
+/// `f'`: P's far distance (CAD eq. 11): `n' + (a + b) cos γ + (f − n) sin γ` for `γ ≥ φ`,
 /// `n' + 2 b cos γ` for `γ < φ`. `Err` names `n_prime`.
 pub fn f_prime(model: &FrustumModel, gamma: LightAngle, n_prime: f64) -> Result<f64, ParamError> {
     Ok(check_near("n_prime", n_prime)? + model.warp_depth(gamma))
 }
 
-/// The aliasing error along the warp axis ([CAD] eq. 12; formulas.md §4.6):
+/// The aliasing error along the warp axis (CAD eq. 12; formulas.md §4.6):
 ///
 /// `m_z(z, n', γ) = (res_c/res_l) · 1/(2 tan φ) · z'(z)² (f' − n')/(z n' f' sin γ)`
 ///
 /// with `res_c/res_l` the ratio of the image resolution (in the light–view plane) to the shadow-map
 /// resolution (along the warp axis). Evaluated in the cancellation-free form of
 /// [`FrustumModel::view_axis_error`], so `n' = ∞` (uniform) is exact; `f64::INFINITY` at `γ = 0`
-/// only. `m_z = (res_c/res_l)/2 · F` with [GMNPR]'s F. `Err` names `n_prime`, `z` or
+/// only. `m_z = (res_c/res_l)/2 · F` with GMNPR's F. `Err` names `n_prime`, `z` or
 /// `resolution_ratio`.
 pub fn m_z(
     model: &FrustumModel,
@@ -66,16 +66,16 @@ pub fn m_z(
     Ok(resolution_ratio / (2.0 * model.half_fov().tan()) * error)
 }
 
-/// The equal-error parameter of the wide case ([CAD] eq. 13, first branch):
+/// The equal-error parameter of the wide case (CAD eq. 13, first branch):
 /// `n'_1(γ) = (n + √(fn)) sin γ − a cos γ`. Raw: negative for small γ, where it must not be used.
-/// `n'_1(π/2) = n_opt` of [LiSPSM].
+/// `n'_1(π/2) = n_opt` of LiSPSM.
 #[must_use]
 pub fn n1(model: &FrustumModel, gamma: LightAngle) -> f64 {
     let range = model.range();
     (range.near() + range.geometric_mean()) * gamma.sin() - model.near_half_height() * gamma.cos()
 }
 
-/// The equal-error parameter of the narrow case ([CAD] eq. 13, second branch):
+/// The equal-error parameter of the narrow case (CAD eq. 13, second branch):
 /// `n'_2(γ) = (f + √(fn)) sin γ − b cos γ`. Raw: negative below [`gamma0`], where equal error is
 /// impossible.
 ///
@@ -90,7 +90,7 @@ pub fn n2(model: &FrustumModel, gamma: LightAngle) -> f64 {
         - range.far() * (phi.radians() - gamma.radians()).sin() / phi.cos()
 }
 
-/// The equal-error parameter of the branch that applies at γ ([CAD] eq. 13): [`n1`] for `γ ≥ φ`,
+/// The equal-error parameter of the branch that applies at γ (CAD eq. 13): [`n1`] for `γ ≥ φ`,
 /// [`n2`] below. Raw (may be negative below [`gamma0`]).
 #[must_use]
 pub fn n_equal_error(model: &FrustumModel, gamma: LightAngle) -> f64 {
@@ -101,7 +101,7 @@ pub fn n_equal_error(model: &FrustumModel, gamma: LightAngle) -> f64 {
 }
 
 /// γ_0 = atan(f tan φ/(f + √(fn))): below it `n'_2 < 0` and no parameter equalises the errors
-/// (formulas.md §4.6; 27.693° for f/n = 100, φ = 30°). Equal to [GMNPR]'s θ_0.
+/// (formulas.md §4.6; 27.693° for f/n = 100, φ = 30°). Equal to GMNPR's θ_0.
 #[must_use]
 pub fn gamma0(model: &FrustumModel) -> LightAngle {
     let range = model.range();
@@ -113,7 +113,7 @@ pub fn gamma0(model: &FrustumModel) -> LightAngle {
 }
 
 /// γ_lim, the angle at which the near and far faces of the view frustum start to overlap in the
-/// light's view ([CAD] eq. 15 as reconstructed in formulas.md §4.7, OCR error 8):
+/// light's view (CAD eq. 15 as reconstructed in formulas.md §4.7, OCR error 8):
 /// `γ_lim = atan((a + b)/(f − n)) = atan(tan φ (f + n)/(f − n))`, always above φ.
 #[must_use]
 pub fn gamma_lim(model: &FrustumModel) -> LightAngle {
@@ -121,14 +121,14 @@ pub fn gamma_lim(model: &FrustumModel) -> LightAngle {
     angle((model.near_half_height() + model.far_half_height()).atan2(range.length()))
 }
 
-/// The fall-back curve `r(γ)` of [CAD] eq. 16, descending from `r(γ_lim) = 1` to `r(0) = 0`. The
+/// The fall-back curve `r(γ)` of CAD eq. 16, descending from `r(γ_lim) = 1` to `r(0) = 0`. The
 /// paper's own choice (eq. 18) is garbled in the OCR; all three candidates are offered, and every
 /// output names the one used.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Falloff {
-    /// [CAD] eq. 17, Zhang et al.'s PSM choice: `r = sin((γ/γ_lim)·π/2)`.
+    /// CAD eq. 17, Zhang et al.'s PSM choice: `r = sin((γ/γ_lim)·π/2)`.
     Eq17,
-    /// [CAD] eq. 18 as reconstructed (formulas.md §4.7, OCR error 10, confidence low–medium):
+    /// CAD eq. 18 as reconstructed (formulas.md §4.7, OCR error 10, confidence low–medium):
     /// `r = 1 + sin((γ/γ_lim − 1)·π/2) = 1 − cos(πγ/(2γ_lim))`, evaluated as `2 sin²(πγ/(4γ_lim))`.
     Eq18,
     /// The equally admissible alternative reading `r = sin²((γ/γ_lim)·π/2)`.
@@ -183,7 +183,7 @@ impl Falloff {
     }
 }
 
-/// The CAD survey's final parameter ([CAD] eq. 16; formulas.md §4.7, OCR error 9):
+/// The CAD survey's final parameter (CAD eq. 16; formulas.md §4.7, OCR error 9):
 ///
 /// `n'(γ) = n'_1(γ)` for `γ_lim ≤ γ ≤ π/2`, and `n'_1(γ_lim)/r(γ)` below, with `r` the chosen
 /// [`Falloff`]. Continuous at γ_lim; `f64::INFINITY` (uniform) at `γ = 0`.
@@ -199,7 +199,7 @@ pub fn n_prime(model: &FrustumModel, gamma: LightAngle, falloff: Falloff) -> f64
     }
 }
 
-/// [`n_prime`] as λ = n'/(f' − n') = n'/d, the form shared with [GMNPR] (formulas.md §4.6).
+/// [`n_prime`] as λ = n'/(f' − n') = n'/d, the form shared with GMNPR (formulas.md §4.6).
 #[must_use]
 pub fn warp(model: &FrustumModel, gamma: LightAngle, falloff: Falloff) -> WarpParameter {
     // n'_1 > 0 for every γ ≥ φ, and γ_lim > φ, so n' > 0 on the whole domain.

@@ -5,7 +5,7 @@ use std::f64::consts::FRAC_PI_2;
 
 use crate::error::ParamError;
 
-/// The eye's depth range `[zn, zf]` (written `[n, f]` in [CAD] and [GMNPR]): distances along the view
+/// The eye's depth range `[zn, zf]` (written `[n, f]` in CAD and GMNPR): distances along the view
 /// axis, in one world unit.
 ///
 /// # Guarantees
@@ -208,7 +208,7 @@ impl HalfFov {
     }
 }
 
-/// γ ([LiSPSM], [CAD]) = θ ([GMNPR]): the smallest angle between the light direction and the view
+/// γ (LiSPSM, CAD) = θ (GMNPR): the smallest angle between the light direction and the view
 /// direction. `π/2` is the ideal case (light perpendicular to the view), `0` the "dueling frusta"
 /// case (light parallel to the view).
 ///
@@ -292,7 +292,7 @@ impl LightAngle {
     }
 }
 
-/// λ = n'/(f' − n') ([GMNPR] §2): the near distance of the warp frustum P normalised by P's depth. The
+/// λ = n'/(f' − n') (GMNPR §2): the near distance of the warp frustum P normalised by P's depth. The
 /// one free parameter of every perspective warp in the papers; unit-free.
 ///
 /// `λ → ∞` is the uniform (standard) shadow map; a small λ is a strong, PSM-like warp.
@@ -362,7 +362,7 @@ impl WarpParameter {
     }
 
     /// The warp's shadow-map coordinate `s(τ) = (λ+1)τ/(λ+τ)` of a point a fraction `τ ∈ [0, 1]` of
-    /// P's depth beyond its near plane ([LiSPSM] eq. 2, corrected sign, formulas.md §2.1, on the
+    /// P's depth beyond its near plane (LiSPSM eq. 2, corrected sign, formulas.md §2.1, on the
     /// unit-depth frustum of §9.1: `s = τ(1+μ)/(1+μτ)`, `μ = 1/λ`). `s(0) = 0`, `s(1) = 1` exactly.
     /// `Err` names `tau` outside `[0, 1]`.
     pub fn warp(self, tau: f64) -> Result<f64, ParamError> {

@@ -1,9 +1,9 @@
 //! Generalized Minimum-Norm Perspective Shadow Maps: *Theory to Practice: Generalized Minimum-Norm
-//! Perspective Shadow Maps*, ICEC 2007, LNCS 4740, pp. 66–78 ([GMNPR]; formulas.md §5), with the
+//! Perspective Shadow Maps*, ICEC 2007, LNCS 4740, pp. 66–78 (GMNPR; formulas.md §5), with the
 //! generalized linear reparameterization GLPR it compares against, and the true minimax parameter of
 //! formulas.md §5.8, which none of the papers has.
 //!
-//! [GMNPR] writes θ for the light angle this crate calls γ ([`LightAngle`]); functions take it as
+//! GMNPR writes θ for the light angle this crate calls γ ([`LightAngle`]); functions take it as
 //! `gamma` and errors name it so. `T = tan φ/tan θ` is never formed: every formula is evaluated in a
 //! division-free sin/cos form (formulas.md §9.6), so θ = π/2 and θ → 0 are exact.
 
@@ -12,7 +12,7 @@ use crate::domain::{LightAngle, WarpParameter};
 use crate::error::ParamError;
 use crate::model::{FrustumModel, ModelCase};
 
-/// [GMNPR]'s normalised perspective error `F = (1/tan φ)·(1/z)·dz/ds` (eq. 1, the screen spanning
+/// GMNPR's normalised perspective error `F = (1/tan φ)·(1/z)·dz/ds` (eq. 1, the screen spanning
 /// `[−1, 1]`) for the warp λ at angle θ (eq. 2):
 ///
 /// `F(λ, θ, z) = ψ(λ, θ) (z + ϕ(λ, θ))²/z`
@@ -35,7 +35,7 @@ pub fn max_error(model: &FrustumModel, gamma: LightAngle, warp: WarpParameter) -
     model.max_view_axis_error(gamma, warp) / model.half_fov().tan()
 }
 
-/// ψ(λ, θ) of [GMNPR] eq. 2 exactly as printed (formulas.md §5.1), with `T = tan φ/tan θ`:
+/// ψ(λ, θ) of GMNPR eq. 2 exactly as printed (formulas.md §5.1), with `T = tan φ/tan θ`:
 /// `1/(tan φ · D · λ(λ+1))`, `D = f − n + (f + n) T` for `θ ≥ φ`;
 /// `(1/tan φ)·tan θ/(2 f λ(λ+1) tan φ)` for `θ < φ`.
 /// For a finite `λ > 0` and `θ > 0`; `Err` names `lambda` or `gamma`.
@@ -53,7 +53,7 @@ pub fn psi(model: &FrustumModel, gamma: LightAngle, lambda: f64) -> Result<f64, 
     })
 }
 
-/// ϕ(λ, θ) of [GMNPR] eq. 2 exactly as printed: `D λ + n T − n` for `θ ≥ φ`,
+/// ϕ(λ, θ) of GMNPR eq. 2 exactly as printed: `D λ + n T − n` for `θ ≥ φ`,
 /// `f (2λ + 1) T − f` for `θ < φ`. F's one minimum over `z > 0` is at `z = ϕ` when `ϕ > 0`
 /// (formulas.md §5.7). For a finite `λ > 0` and `θ > 0`; `Err` names `lambda` or `gamma`.
 pub fn phi(model: &FrustumModel, gamma: LightAngle, lambda: f64) -> Result<f64, ParamError> {
@@ -69,23 +69,23 @@ pub fn phi(model: &FrustumModel, gamma: LightAngle, lambda: f64) -> Result<f64, 
     })
 }
 
-/// μ(θ) of [GMNPR] §3 (formulas.md §5.2): the near point's position through the warp frustum's depth,
+/// μ(θ) of GMNPR §3 (formulas.md §5.2): the near point's position through the warp frustum's depth,
 /// `τ(n)`; `F(λ, θ, n) ∝ (λ + μ)²/(λ(λ+1))`.
 #[must_use]
 pub fn mu(model: &FrustumModel, gamma: LightAngle) -> f64 {
     model.depth_fraction(gamma, model.range().near())
 }
 
-/// ν(θ) of [GMNPR] §3: the far point's position `τ(f)`; `1/2` in the narrow case.
+/// ν(θ) of GMNPR §3: the far point's position `τ(f)`; `1/2` in the narrow case.
 #[must_use]
 pub fn nu(model: &FrustumModel, gamma: LightAngle) -> f64 {
     model.depth_fraction(gamma, model.range().far())
 }
 
-/// λ1(θ), the equal-error parameter of [GMNPR] eq. 4 for `θ ∈ [φ, π/2]`, in its division-free form
+/// λ1(θ), the equal-error parameter of GMNPR eq. 4 for `θ ∈ [φ, π/2]`, in its division-free form
 /// (formulas.md §5.3):
 /// `λ1 = ((n + √(fn)) sin θ − n tan φ cos θ)/((f − n) sin θ + (f + n) tan φ cos θ)`.
-/// Equals `n'_1/(f' − n')` of [CAD] eq. 13. Raw: the formula is evaluated at any θ, but means
+/// Equals `n'_1/(f' − n')` of CAD eq. 13. Raw: the formula is evaluated at any θ, but means
 /// something only on `[φ, π/2]`.
 #[must_use]
 pub fn lambda1(model: &FrustumModel, gamma: LightAngle) -> f64 {
@@ -96,7 +96,7 @@ pub fn lambda1(model: &FrustumModel, gamma: LightAngle) -> f64 {
     numerator / depth
 }
 
-/// λ2(θ), the equal-error parameter of [GMNPR] eq. 4 for `θ ∈ [0, φ]`:
+/// λ2(θ), the equal-error parameter of GMNPR eq. 4 for `θ ∈ [0, φ]`:
 /// `λ2 = (f + √(fn))/(2f) · tan θ/tan φ − 1/2`, evaluated as `n'_2/(2 f tan φ cos θ)` with the
 /// stable `n'_2` of [`cad::n2`]. Raw: negative below θ_0, where no λ equalises the errors
 /// (formulas.md §9.5); `±∞` at θ = π/2, far outside its branch.
@@ -105,8 +105,8 @@ pub fn lambda2(model: &FrustumModel, gamma: LightAngle) -> f64 {
     cad::n2(model, gamma) / (2.0 * model.far_half_height() * gamma.cos())
 }
 
-/// The equal-error λ of the branch that applies at θ ([GMNPR] eq. 4): `F(λ, θ, n) = F(λ, θ, f)`.
-/// Evaluated as `n'/d` with [CAD]'s `n'_1` or `n'_2` ([`cad::n_equal_error`]; the two papers' forms
+/// The equal-error λ of the branch that applies at θ (GMNPR eq. 4): `F(λ, θ, n) = F(λ, θ, f)`.
+/// Evaluated as `n'/d` with CAD's `n'_1` or `n'_2` ([`cad::n_equal_error`]; the two papers' forms
 /// are the same, formulas.md §5.3), which is [`lambda1`] for `θ ≥ φ` and [`lambda2`] below. Raw:
 /// may be zero or negative below θ_0.
 #[must_use]
@@ -114,7 +114,7 @@ pub fn lambda_equal_error(model: &FrustumModel, gamma: LightAngle) -> f64 {
     cad::n_equal_error(model, gamma) / model.warp_depth(gamma)
 }
 
-/// λ2*(θ) = λ1(φ)/tan(πθ/(4φ)) = √(fn)/(2f)/tan(πθ/(4φ)) ([GMNPR] eq. 7), GMNPR's replacement for
+/// λ2*(θ) = λ1(φ)/tan(πθ/(4φ)) = √(fn)/(2f)/tan(πθ/(4φ)) (GMNPR eq. 7), GMNPR's replacement for
 /// λ2 on `[0, φ]`: continuous with λ1 at φ and `→ ∞` (uniform) as `θ → 0`. `None` above φ, where it is
 /// not defined; `UNIFORM` at θ = 0.
 #[must_use]
@@ -130,7 +130,7 @@ pub fn lambda2_star(model: &FrustumModel, gamma: LightAngle) -> Option<WarpParam
     Some(WarpParameter::from_positive(at_phi * x.cos() / x.sin()))
 }
 
-/// λ_GMNPR ([GMNPR] eq. 8): λ1(θ) on `[φ, π/2]`, λ2*(θ) below; `UNIFORM` at θ = 0.
+/// λ_GMNPR (GMNPR eq. 8): λ1(θ) on `[φ, π/2]`, λ2*(θ) below; `UNIFORM` at θ = 0.
 #[must_use]
 pub fn lambda_gmnpr(model: &FrustumModel, gamma: LightAngle) -> WarpParameter {
     match lambda2_star(model, gamma) {
@@ -140,7 +140,7 @@ pub fn lambda_gmnpr(model: &FrustumModel, gamma: LightAngle) -> WarpParameter {
     }
 }
 
-/// λ_LiSPSM ([GMNPR] eq. 9): LiSPSM's `n_opt/sin θ` normalised by the model's warp depth,
+/// λ_LiSPSM (GMNPR eq. 9): LiSPSM's `n_opt/sin θ` normalised by the model's warp depth,
 /// `λ = (n + √(fn))/(d sin θ)` (formulas.md §5.6). `UNIFORM` at θ = 0.
 #[must_use]
 pub fn lambda_lispsm(model: &FrustumModel, gamma: LightAngle) -> WarpParameter {
@@ -150,7 +150,7 @@ pub fn lambda_lispsm(model: &FrustumModel, gamma: LightAngle) -> WarpParameter {
     )
 }
 
-/// λ_GLPR, the generalized linear perspective reparameterization ([GMNPR] §3, after Zhang et al.):
+/// λ_GLPR, the generalized linear perspective reparameterization (GMNPR §3, after Zhang et al.):
 /// the λ with `ϕ(λ, θ) = 0`, so that `F ∝ z`, extending PSM to general angles. On `(φ, π/2]` it is
 /// `λ = n (1 − T)/D`, evaluated as `n sin(θ − φ)/(cos φ · d)`. `None` on `[0, φ]`, where no positive
 /// λ makes F linear.
@@ -193,7 +193,7 @@ pub fn lambda_minimax(model: &FrustumModel, gamma: LightAngle) -> WarpParameter 
     )
 }
 
-/// θ_0: below it λ2 < 0 (formulas.md §5.4, §9.5); the same angle as [CAD]'s γ_0.
+/// θ_0: below it λ2 < 0 (formulas.md §5.4, §9.5); the same angle as CAD's γ_0.
 #[must_use]
 pub fn theta0(model: &FrustumModel) -> LightAngle {
     crate::cad::gamma0(model)

@@ -3,13 +3,13 @@
 //!
 //! | module | paper |
 //! |---|---|
-//! | [`lispsm`], [`logarithmic`] | [LiSPSM] Wimmer, Scherzer, Purgathofer, *Light Space Perspective Shadow Maps*, EGSR 2004, doi 10.2312/EGWR/EGSR04/143-151; the logarithmic ideal after Lloyd et al., ACM TOG 27(4), 2008 |
-//! | [`cad`], [`splits`], [`bias`], [`vsm`] | [CAD] Barroso & Celes, *Improved Real-Time Shadow Mapping for CAD Models*, SIBGRAPI 2007, doi 10.1109/SIBGRAPI.2007.36 |
-//! | [`gmnpr`] | [GMNPR] *Theory to Practice: Generalized Minimum-Norm Perspective Shadow Maps*, ICEC 2007, LNCS 4740, 66–78 |
-//! | [`model`] | the 2-D view-frustum model shared by [CAD] eqs. 10–12 and [GMNPR] eq. 2 |
+//! | [`lispsm`], [`logarithmic`] | LiSPSM Wimmer, Scherzer, Purgathofer, *Light Space Perspective Shadow Maps*, EGSR 2004, doi 10.2312/EGWR/EGSR04/143-151; the logarithmic ideal after Lloyd et al., ACM TOG 27(4), 2008 |
+//! | [`cad`], [`splits`], [`bias`], [`vsm`] | CAD Barroso & Celes, *Improved Real-Time Shadow Mapping for CAD Models*, SIBGRAPI 2007, doi 10.1109/SIBGRAPI.2007.36 |
+//! | [`gmnpr`] | GMNPR *Theory to Practice: Generalized Minimum-Norm Perspective Shadow Maps*, ICEC 2007, LNCS 4740, 66–78 |
+//! | [`model`] | the 2-D view-frustum model shared by CAD eqs. 10–12 and GMNPR eq. 2 |
 //! | [`rule`] | all parameter choices side by side, and the true minimax of the model |
 //!
-//! [PSM] (Stamminger & Drettakis, SIGGRAPH 2002) and [CG06] (Chong & Gortler, Harvard TR-11-06)
+//! PSM (Stamminger & Drettakis, SIGGRAPH 2002) and CG06 (Chong & Gortler, Harvard TR-11-06)
 //! enter through the limits `n = zn` of [`lispsm`] and through later crates.
 //!
 //! The reference for every formula is the project's `formulas.md` (in `shared/docs/`): it
@@ -17,14 +17,14 @@
 //! forms used here. Each function's documentation cites paper, equation and the section of that file.
 //!
 //! # Conventions
-//! * γ ([LiSPSM], [CAD]) = θ ([GMNPR]) is the smallest angle between light and view directions,
+//! * γ (LiSPSM, CAD) = θ (GMNPR) is the smallest angle between light and view directions,
 //!   `0 ≤ γ ≤ π/2`; π/2 is the ideal case. φ is half the field of view in the light–view plane.
 //! * Distances are in one world unit; only ratios matter.
 //! * The warp is described by λ = n'/(f' − n') ([`WarpParameter`]): λ = ∞ is the uniform map.
-//!   Functions in a paper's own variables (`n` of [LiSPSM], `n'` of [CAD]) accept `f64::INFINITY`
+//!   Functions in a paper's own variables (`n` of LiSPSM, `n'` of CAD) accept `f64::INFINITY`
 //!   for "uniform" where the paper does.
-//! * Error normalisations: [LiSPSM]'s `dp/ds = (1/z)·dz/ds` (screen `[0, 1]`); [GMNPR]'s
-//!   `F = dp/ds / tan φ` (screen `[−1, 1]`); [CAD]'s `m_z = (res_c/res_l)·F/2`.
+//! * Error normalisations: LiSPSM's `dp/ds = (1/z)·dz/ds` (screen `[0, 1]`); GMNPR's
+//!   `F = dp/ds / tan φ` (screen `[−1, 1]`); CAD's `m_z = (res_c/res_l)·F/2`.
 //!
 //! # Domains
 //! A bad input is an `Err(ParamError)` naming the parameter, never a NaN. Near the singular points
@@ -48,4 +48,4 @@ pub mod vsm;
 pub use domain::{DepthRange, HalfFov, LightAngle, WarpParameter};
 pub use error::ParamError;
 pub use model::{FrustumModel, ModelCase};
-pub use rule::ParameterRule;
+pub use rule::{ParameterRule, RuleEvaluation};

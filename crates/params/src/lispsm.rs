@@ -1,5 +1,5 @@
 //! Light Space Perspective Shadow Maps: Wimmer, Scherzer, Purgathofer, EGSR 2004, doi
-//! 10.2312/EGWR/EGSR04/143-151 ([LiSPSM]; formulas.md §2), with the uniform map and PSM as the limits
+//! 10.2312/EGWR/EGSR04/143-151 (LiSPSM; formulas.md §2), with the uniform map and PSM as the limits
 //! of its one parameter, and the authors' later Δz form.
 //!
 //! Notation: the eye sees depths `z ∈ [zn, zf]`; the warp frustum P has its projection centre at
@@ -16,7 +16,7 @@ pub fn warp_for_near_distance(range: DepthRange, n: f64) -> Result<WarpParameter
     WarpParameter::from_near_distance(n, range.length())
 }
 
-/// The shadow-map coordinate of eye depth `z` ([LiSPSM] eq. 2 with the sign corrected, formulas.md
+/// The shadow-map coordinate of eye depth `z` (LiSPSM eq. 2 with the sign corrected, formulas.md
 /// §2.1): `s(z') = f(z' − n)/(z'(f − n))`, `z' = z − zn + n`, so `s(zn) = 0` and `s(zf) = 1` exactly.
 /// Evaluated on the unit-depth frustum (§9.1). `Err` names `n` or `z`.
 pub fn s(range: DepthRange, n: f64, z: f64) -> Result<f64, ParamError> {
@@ -25,7 +25,7 @@ pub fn s(range: DepthRange, n: f64, z: f64) -> Result<f64, ParamError> {
     Ok(warp.warp_unchecked(range.fraction(z)))
 }
 
-/// `ds/dz = f n/((z − zn + n)² (f − n))` ([LiSPSM] §4.3; formulas.md §2.2), evaluated as
+/// `ds/dz = f n/((z − zn + n)² (f − n))` (LiSPSM §4.3; formulas.md §2.2), evaluated as
 /// `(1/(zf − zn))·(1+μ)/(1+μτ)²`. `Err` names `n` or `z`.
 pub fn ds_dz(range: DepthRange, n: f64, z: f64) -> Result<f64, ParamError> {
     let warp = warp_for_near_distance(range, n)?;
@@ -33,7 +33,7 @@ pub fn ds_dz(range: DepthRange, n: f64, z: f64) -> Result<f64, ParamError> {
     Ok(1.0 / (range.length() * warp.stretch_unchecked(range.fraction(z))))
 }
 
-/// The perspective aliasing error along z for view ⟂ light ([LiSPSM] eq. 3; formulas.md §2.2):
+/// The perspective aliasing error along z for view ⟂ light (LiSPSM eq. 3; formulas.md §2.2):
 ///
 /// `dp/ds = (z − zn + n)²/z · (zf − zn)/(n (n + zf − zn))`
 ///
@@ -51,7 +51,7 @@ pub(crate) fn dp_ds_unchecked(range: DepthRange, warp: WarpParameter, z: f64) ->
 }
 
 /// The error across the light–view plane, `dp/dt`, normalised so that P encloses the view frustum
-/// laterally (formulas.md §2.8, correcting [LiSPSM] §4.3's "ds/dt" and its missing factor):
+/// laterally (formulas.md §2.8, correcting LiSPSM §4.3's "ds/dt" and its missing factor):
 ///
 /// `dp/dt = (z − zn + n)/z · zf/(n + zf − zn)`
 ///
@@ -77,20 +77,20 @@ pub fn max_error(range: DepthRange, n: f64) -> Result<f64, ParamError> {
     Ok(dp_ds_unchecked(range, warp, range.near()).max(dp_ds_unchecked(range, warp, range.far())))
 }
 
-/// The uniform (focused, unwarped) map's error, the limit `n → ∞` of eq. 3 ([LiSPSM] §4.3):
+/// The uniform (focused, unwarped) map's error, the limit `n → ∞` of eq. 3 (LiSPSM §4.3):
 /// `dp/ds = (zf − zn)/z`. `Err` names `z`.
 pub fn uniform_dp_ds(range: DepthRange, z: f64) -> Result<f64, ParamError> {
     let z = range.check_depth("z", z)?;
     Ok(range.length() / z)
 }
 
-/// PSM's error, eq. 3 at `n = zn` ([LiSPSM] §4.3): `dp/ds = z (zf − zn)/(zn zf)`. `Err` names `z`.
+/// PSM's error, eq. 3 at `n = zn` (LiSPSM §4.3): `dp/ds = z (zf − zn)/(zn zf)`. `Err` names `z`.
 pub fn psm_dp_ds(range: DepthRange, z: f64) -> Result<f64, ParamError> {
     let z = range.check_depth("z", z)?;
     Ok(z / range.near() * (range.length() / range.far()))
 }
 
-/// `n_opt = zn + √(zn zf)` ([LiSPSM] §4.3; formulas.md §2.5): the n that makes eq. 3 equal at `zn`
+/// `n_opt = zn + √(zn zf)` (LiSPSM §4.3; formulas.md §2.5): the n that makes eq. 3 equal at `zn`
 /// and `zf`, which is its L∞ optimum. Equals Lloyd's `(zf − zn)/(√(zf/zn) − 1)`.
 #[must_use]
 pub fn n_opt(range: DepthRange) -> f64 {
@@ -119,7 +119,7 @@ pub fn error_minimum_depth(range: DepthRange, n: f64) -> Result<Option<f64>, Par
     Ok((n > range.near() && n.is_finite()).then(|| n - range.near()))
 }
 
-/// The paper's general-angle parameter `n'_opt = n_opt / sin γ` ([LiSPSM] §4.4). A heuristic, not
+/// The paper's general-angle parameter `n'_opt = n_opt / sin γ` (LiSPSM §4.4). A heuristic, not
 /// an optimum (formulas.md §2.6): it only forces convergence to the uniform map as `γ → 0`.
 /// Returns `f64::INFINITY` (uniform) at `γ = 0`.
 #[must_use]
@@ -131,7 +131,7 @@ pub fn n_opt_general(range: DepthRange, gamma: LightAngle) -> f64 {
     }
 }
 
-/// The Δz variant ([LiSPSM] §4.4; formulas.md §2.7): `n_opt` with `zf` replaced by `z0 + Δz`,
+/// The Δz variant (LiSPSM §4.4; formulas.md §2.7): `n_opt` with `zf` replaced by `z0 + Δz`,
 /// `Δz = d sin γ`, then divided by `sin γ`:
 ///
 /// `n' = (z0 + √(z0 (z0 + d sin γ)))/sin γ`

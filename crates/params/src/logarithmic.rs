@@ -1,4 +1,4 @@
-//! The logarithmic parameterisation `s = ln(z/zn)/ln(zf/zn)` ([LiSPSM] §4.3 as the ideal the
+//! The logarithmic parameterisation `s = ln(z/zn)/ln(zf/zn)` (LiSPSM §4.3 as the ideal the
 //! perspective warps approximate; Lloyd et al., *Logarithmic Perspective Shadow Maps*, ACM TOG 27(4),
 //! 2008; formulas.md §2.9). `ds = dz/(z ln(zf/zn))` makes the perspective error `dp/ds = ln(zf/zn)`
 //! constant over the whole range: the least L∞ error any parameterisation can have in this model.

@@ -1,4 +1,4 @@
-//! The 2-D view-frustum model shared by [CAD] eqs. 10–12 and [GMNPR] eq. 2 (formulas.md §0, §4.6,
+//! The 2-D view-frustum model shared by CAD eqs. 10–12 and GMNPR eq. 2 (formulas.md §0, §4.6,
 //! §5.1): the focus body B is the view frustum V, cut by the plane that contains the light and view
 //! directions, and the warp frustum P is fitted to it in light space.
 //!
@@ -6,7 +6,7 @@
 //! perpendicular to the light) `z sin γ`, and a lateral offset `s` maps to `s cos γ`. The frustum's
 //! corners are `z ∈ {n, f}` with lateral offsets `±a = ±n tan φ` and `±b = ±f tan φ`. P's near plane
 //! passes through the corner with the smallest light-space depth — the lower near corner when
-//! `γ ≥ φ` ("wide" case, [GMNPR] case 1), the lower far corner when `γ < φ` ("narrow" case, case 2) —
+//! `γ ≥ φ` ("wide" case, GMNPR case 1), the lower far corner when `γ < φ` ("narrow" case, case 2) —
 //! and its far plane through the upper far corner.
 //!
 //! Everything here is division-free in γ (no `tan γ`), so it holds exactly at γ = π/2 and γ = 0
@@ -18,10 +18,10 @@ use crate::error::ParamError;
 /// Which corner of the view frustum P's near plane passes through (formulas.md §4.6).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ModelCase {
-    /// `φ ≤ γ ≤ π/2` ([GMNPR] case 1, the first branch of [CAD] eqs. 10, 11, 13): the lower near
+    /// `φ ≤ γ ≤ π/2` (GMNPR case 1, the first branch of CAD eqs. 10, 11, 13): the lower near
     /// corner is nearest P's centre.
     Wide,
-    /// `0 ≤ γ < φ` ([GMNPR] case 2, the second branch): the lower far corner is; the light looks
+    /// `0 ≤ γ < φ` (GMNPR case 2, the second branch): the lower far corner is; the light looks
     /// (nearly) along the view.
     Narrow,
 }
@@ -53,13 +53,13 @@ impl FrustumModel {
         self.half_fov
     }
 
-    /// `a = n tan φ`, the half-height of the near plane ([CAD] §4).
+    /// `a = n tan φ`, the half-height of the near plane (CAD §4).
     #[must_use]
     pub fn near_half_height(&self) -> f64 {
         self.range.near() * self.half_fov.tan()
     }
 
-    /// `b = f tan φ`, the half-height of the far plane ([CAD] §4).
+    /// `b = f tan φ`, the half-height of the far plane (CAD §4).
     #[must_use]
     pub fn far_half_height(&self) -> f64 {
         self.range.far() * self.half_fov.tan()
@@ -76,7 +76,7 @@ impl FrustumModel {
     }
 
     /// `d = f' − n'`, the depth of the warp frustum P: the extent of B along light-space depth
-    /// ([CAD] eq. 11 minus n'):
+    /// (CAD eq. 11 minus n'):
     /// `d = (f − n) sin γ + (a + b) cos γ` for `γ ≥ φ`, `d = 2 b cos γ` for `γ < φ`.
     /// It does not depend on n'. Positive everywhere on `0 ≤ γ ≤ π/2`.
     #[must_use]
@@ -91,7 +91,7 @@ impl FrustumModel {
     }
 
     /// `u(z) = z'(z) − n'`: how far beyond P's near plane the view-axis point at eye depth `z` lies
-    /// ([CAD] eq. 10 minus n'): `a cos γ + (z − n) sin γ` for `γ ≥ φ`,
+    /// (CAD eq. 10 minus n'): `a cos γ + (z − n) sin γ` for `γ ≥ φ`,
     /// `b cos γ + (z − f) sin γ` for `γ < φ`. For `z` in `[n, f]`, `0 ≤ u ≤ d`; both branches are
     /// evaluated as sums of non-negative terms.
     pub(crate) fn near_plane_offset(&self, gamma: LightAngle, z: f64) -> f64 {
@@ -110,18 +110,18 @@ impl FrustumModel {
     }
 
     /// `τ(z) = u(z)/d ∈ [0, 1]`: the view-axis point's position through P's depth. `τ(n) = μ` and
-    /// `τ(f) = ν` of [GMNPR] §3 (formulas.md §5.2).
+    /// `τ(f) = ν` of GMNPR §3 (formulas.md §5.2).
     pub(crate) fn depth_fraction(&self, gamma: LightAngle, z: f64) -> f64 {
         self.near_plane_offset(gamma, z) / self.warp_depth(gamma)
     }
 
-    /// The perspective aliasing along the view axis in [LiSPSM]'s normalisation,
-    /// `dp/ds = (1/z)·dz/ds` (the screen spanning `[0, 1]`, [LiSPSM] eq. 1 with `cos α/cos β = 1`),
+    /// The perspective aliasing along the view axis in LiSPSM's normalisation,
+    /// `dp/ds = (1/z)·dz/ds` (the screen spanning `[0, 1]`, LiSPSM eq. 1 with `cos α/cos β = 1`),
     /// for a warp λ fitted to the model at angle γ:
     ///
     /// `dp/ds = d/(z sin γ) · (λ + τ)²/(λ(λ + 1))`,  `τ = u(z)/d`
     ///
-    /// which is [CAD] eq. 12 and [GMNPR] eq. 2 up to their constant factors, written in the form of
+    /// which is CAD eq. 12 and GMNPR eq. 2 up to their constant factors, written in the form of
     /// formulas.md §9.1 (no cancellation; the uniform map λ = ∞ gives `d/(z sin γ)` exactly).
     ///
     /// At `γ = 0` the view axis projects onto one shadow-map row and the error is unbounded: the

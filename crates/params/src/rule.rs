@@ -13,15 +13,15 @@ use crate::model::FrustumModel;
 pub enum ParameterRule {
     /// The uniform (standard, focused) shadow map: λ = ∞.
     Uniform,
-    /// [LiSPSM] §4.4: `n'_opt = (n + √(fn))/sin γ` ([GMNPR] eq. 9 as λ).
+    /// LiSPSM §4.4: `n'_opt = (n + √(fn))/sin γ` (GMNPR eq. 9 as λ).
     Lispsm,
-    /// [LiSPSM]'s Δz variant: `n' = (n + √(n (n + d sin γ)))/sin γ`, `d` the model's warp depth.
+    /// LiSPSM's Δz variant: `n' = (n + √(n (n + d sin γ)))/sin γ`, `d` the model's warp depth.
     LispsmDeltaZ,
-    /// [CAD] eq. 16 with the given fall-back curve `r(γ)`.
+    /// CAD eq. 16 with the given fall-back curve `r(γ)`.
     Cad(Falloff),
-    /// [GMNPR] eq. 8.
+    /// GMNPR eq. 8.
     Gmnpr,
-    /// GLPR ([GMNPR] §3): F linear in z; defined only for γ > φ.
+    /// GLPR (GMNPR §3): F linear in z; defined only for γ > φ.
     Glpr,
     /// The L∞ optimum of the model, `max(λ_equal-error, μ/(1 − 2μ))` (formulas.md §5.8).
     Minimax,
@@ -97,5 +97,31 @@ impl ParameterRule {
             Self::Glpr => gmnpr::lambda_glpr(model, gamma),
             Self::Minimax => Some(gmnpr::lambda_minimax(model, gamma)),
         }
+    }
+}
+
+/// A rule's parameter and the error it buys, at one angle, in the 2-D model.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RuleEvaluation {
+    /// λ = n'/d; `UNIFORM` when the rule gives the uniform map.
+    pub warp: WarpParameter,
+    /// P's near distance `n' = λ·d` for the model's warp depth `d`; `f64::INFINITY` for the
+    /// uniform map.
+    pub near_distance: f64,
+    /// `max over z ∈ [n, f]` of GMNPR's F ([`gmnpr::max_error`]); `f64::INFINITY` at `γ = 0`,
+    /// where every rule's error is unbounded.
+    pub max_error: f64,
+}
+
+impl ParameterRule {
+    /// λ, n' and the maximum error at angle γ; `None` where the rule is not defined.
+    #[must_use]
+    pub fn evaluate(self, model: &FrustumModel, gamma: LightAngle) -> Option<RuleEvaluation> {
+        let warp = self.warp(model, gamma)?;
+        Some(RuleEvaluation {
+            warp,
+            near_distance: warp.near_distance(model.warp_depth(gamma)),
+            max_error: gmnpr::max_error(model, gamma, warp),
+        })
     }
 }

@@ -1,12 +1,12 @@
 //! z-partitioning: where to split the eye's depth range `[n, f]` into k shadow maps (cascades).
 //!
 //! * uniform: `n + (f − n) i/k`;
-//! * logarithmic, "self-similar" ([CAD] eq. 5; Lloyd et al. 2006): `n (f/n)^(i/k)`, every partition
+//! * logarithmic, "self-similar" (CAD eq. 5; Lloyd et al. 2006): `n (f/n)^(i/k)`, every partition
 //!   with the same ratio `(f/n)^(1/k)`, which is optimal whenever a partition's maximum error grows
 //!   with its ratio alone (formulas.md §4.5);
 //! * practical (Zhang et al.'s parallel-split scheme, GPU Gems 3 ch. 10):
 //!   `λ·n(f/n)^(i/k) + (1 − λ)·(n + (f − n) i/k)`, divided by k, not k + 1 (formulas.md §7);
-//! * adaptive ([CAD] eq. 19; formulas.md §4.8): a per-boundary blend, weighted by the light angle,
+//! * adaptive (CAD eq. 19; formulas.md §4.8): a per-boundary blend, weighted by the light angle,
 //!   between the logarithmic split and the "limit" split in which every partition but the first has
 //!   ratio δ.
 //!
@@ -22,7 +22,7 @@ use crate::error::ParamError;
 pub enum SplitScheme {
     /// Equal lengths: `b_i = n + (f − n) i/k`.
     Uniform,
-    /// Equal ratios ([CAD] eq. 5): `b_i = n (f/n)^(i/k)`.
+    /// Equal ratios (CAD eq. 5): `b_i = n (f/n)^(i/k)`.
     Logarithmic,
     /// The practical blend `b_i = λ·n(f/n)^(i/k) + (1 − λ)·(n + (f − n) i/k)` (Zhang et al.);
     /// `weight = λ ∈ [0, 1]`, 1 being logarithmic. OGRE ships 0.95, three.js 0.5.
@@ -30,7 +30,7 @@ pub enum SplitScheme {
         /// λ, the weight of the logarithmic split, in `[0, 1]`.
         weight: f64,
     },
-    /// [CAD] eq. 19: with `β = γ/(π/2)`, `b_k = f` and, for `i = k, …, 2`,
+    /// CAD eq. 19: with `β = γ/(π/2)`, `b_k = f` and, for `i = k, …, 2`,
     /// `b_{i−1} = β·n(f/n)^((i−1)/k) + (1 − β)·b_i/δ`. The paper recommends `δ ≤ 4` without PCF and
     /// `δ ≤ 2` with it.
     ///

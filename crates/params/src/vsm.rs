@@ -64,7 +64,7 @@ impl ShiftedMoments {
         (self.m2 - self.m1 * self.m1).max(0.0)
     }
 
-    /// The lit fraction at receiver depth `t` ([CAD] eq. 2): 1 for `t ≤ μ`, else
+    /// The lit fraction at receiver depth `t` (CAD eq. 2): 1 for `t ≤ μ`, else
     /// `σ²/(σ² + (t − μ)²)` with `σ²` raised to at least `min_variance` (the usual guard against
     /// acne where the variance vanishes). `t − μ` is formed as `(t − r) − M1`.
     /// `Err` names `t` or `min_variance` (must be finite and ≥ 0).

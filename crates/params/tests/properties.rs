@@ -243,8 +243,8 @@ proptest! {
         prop_assert!(relative_error(stable, printed) <= tolerance, "{stable} {printed}");
     }
 
-    /// Claim: λ = n'/(f' − n') links the CAD and GMNPR forms: [CAD] eq. 13 as printed, divided by
-    /// eq. 11's f' − n', equals [GMNPR] eq. 4 as printed (with `T = tan φ/tan θ`), and both equal
+    /// Claim: λ = n'/(f' − n') links the CAD and GMNPR forms: CAD eq. 13 as printed, divided by
+    /// eq. 11's f' − n', equals GMNPR eq. 4 as printed (with `T = tan φ/tan θ`), and both equal
     /// the crate's stable evaluation, to the rounding of the terms that cancel in the printed forms.
     #[test]
     fn cad_and_gmnpr_parameters_are_the_same((m, gamma) in any_case()) {

@@ -1,1 +1,21 @@
-//! wip
+//! Deterministic charts and tables for shadowlab: a figure is plain data ([`Figure`]: panels of line
+//! series on linear or log axes, with labelled marker lines), drawn to SVG by plotters and
+//! rasterised to PNG by resvg from that same SVG, with one embedded font. The same figure gives the
+//! same bytes on every run and machine; tables are CSV at full f64 precision.
+//!
+//! Why these libraries: plotters lays out axes, ticks and legends; resvg renders anti-aliased,
+//! deterministic pixels (with tiny-skia) without system fonts. Nothing here knows about shadows.
+
+mod clip;
+mod error;
+mod figure;
+mod font;
+mod render;
+mod table;
+
+pub use error::PlotError;
+pub use figure::{
+    Axis, Color, Figure, LegendPosition, LineStyle, Marker, PALETTE, Panel, Scale, Series,
+};
+pub use render::{render_png, render_svg};
+pub use table::Table;

@@ -1,0 +1,49 @@
+//! How the tool fails: a usage or input error (exit code 2) or anything else (exit code 1).
+
+use std::fmt;
+use std::process::ExitCode;
+
+use shadowlab_params::ParamError;
+
+/// A failure of a subcommand.
+#[derive(Debug)]
+pub(crate) enum CliError {
+    /// Bad input: the message names the flag or file. Exit code 2.
+    Input(String),
+    /// An I/O or internal failure. Exit code 1.
+    Failure(anyhow::Error),
+}
+
+impl CliError {
+    /// The exit code for this failure.
+    pub(crate) fn exit_code(&self) -> ExitCode {
+        match self {
+            Self::Input(_) => ExitCode::from(2),
+            Self::Failure(_) => ExitCode::from(1),
+        }
+    }
+
+    /// An input error from the params crate, naming the command-line flag that carried the bad
+    /// value: the crate's parameter names are the flags' names.
+    pub(crate) fn from_param(error: &ParamError) -> Self {
+        Self::Input(format!(
+            "invalid --{}: {error}",
+            error.parameter().replace('_', "-")
+        ))
+    }
+}
+
+impl fmt::Display for CliError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::Input(message) => f.write_str(message),
+            Self::Failure(error) => write!(f, "{error:#}"),
+        }
+    }
+}
+
+impl From<anyhow::Error> for CliError {
+    fn from(error: anyhow::Error) -> Self {
+        Self::Failure(error)
+    }
+}
