@@ -126,6 +126,10 @@ proptest! {
         prop_assert!(relative_error(near, far) <= EQUAL_ERROR_TOLERANCE, "{near} {far}");
         let closed = lispsm::max_error_at_n_opt(range);
         prop_assert!(relative_error(near, closed) <= EQUAL_ERROR_TOLERANCE, "{near} {closed}");
+        // Its one interior minimum is at √(zn zf) (formulas.md §2.5).
+        let minimum = lispsm::error_minimum_depth(range, n).unwrap().unwrap();
+        let mean = range.geometric_mean();
+        prop_assert!(relative_error(minimum, mean) <= IDENTITY_TOLERANCE, "{minimum} {mean}");
     }
 
     /// Claim: λ1 (wide) equalises F(n) and F(f); so does n'_1 for the CAD survey's m_z.
@@ -204,8 +208,9 @@ proptest! {
     /// brute-force location of the minimum is checked where F varies by more than
     /// [`RESOLVABLE_VARIATION`] over the range (for f/n → 1 it is flat to rounding).
     #[test]
-    fn equal_error_minimum_sits_at_the_geometric_mean((m, gamma) in wide_case()) {
+    fn equal_error_minimum_sits_at_the_geometric_mean((m, gamma) in prop_oneof![wide_case(), narrow_equal_error_case()]) {
         let lambda = gmnpr::lambda_equal_error(&m, gamma);
+        prop_assume!(lambda >= f64::MIN_POSITIVE);
         let warp = WarpParameter::from_lambda(lambda).unwrap();
         let mean = m.range().geometric_mean();
         let phi = gmnpr::phi(&m, gamma, lambda).unwrap();
