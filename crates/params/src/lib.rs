@@ -16,6 +16,24 @@
 //! reconstructs the formulas from the OCR'd papers, corrects 19 OCR errors and gives the stable
 //! forms used here. Each function's documentation cites paper, equation and the section of that file.
 //!
+//! # Example
+//! The best warp for a light at 45° to a 60° view of depths 1 to 100, and what each paper's choice
+//! costs against it:
+//! ```
+//! use shadowlab_params::{DepthRange, FrustumModel, HalfFov, LightAngle, ParameterRule};
+//!
+//! let model = FrustumModel::new(DepthRange::new(1.0, 100.0)?, HalfFov::from_full_fov_degrees(60.0)?);
+//! let gamma = LightAngle::from_degrees(45.0)?;
+//! let best = ParameterRule::Minimax.evaluate(&model, gamma).expect("defined at every angle");
+//! assert!((best.warp.lambda() - 0.0662544798897).abs() < 1e-12); // formulas.md §8.4
+//! for rule in ParameterRule::ALL {
+//!     if let Some(e) = rule.evaluate(&model, gamma) {
+//!         assert!(e.max_error >= best.max_error * (1.0 - 1e-12), "{}", rule.key());
+//!     }
+//! }
+//! # Ok::<(), shadowlab_params::ParamError>(())
+//! ```
+//!
 //! # Conventions
 //! * γ (LiSPSM, CAD) = θ (GMNPR) is the smallest angle between light and view directions,
 //!   `0 ≤ γ ≤ π/2`; π/2 is the ideal case. φ is half the field of view in the light–view plane.
