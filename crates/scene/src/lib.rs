@@ -1,0 +1,55 @@
+//! # shadowlab-scene: triangle meshes for shadow-map experiments
+//!
+//! A [`Mesh`] is a validated triangle mesh in f64: finite positions, unit per-vertex normals,
+//! triangles counter-clockwise seen from the side the normals face, and a group (part) id per
+//! triangle. Meshes come from OBJ files ([`load_obj`], through tobj, with errors that name the file
+//! and line) or from [`procedural`] shapes (plane, box, sphere, cylinder, a lattice of thin bars,
+//! a chess board), and can be moved ([`Mesh::transformed`]) and combined ([`Mesh::merged`]).
+//!
+//! ```
+//! use glam::{DAffine3, DVec3};
+//! use shadowlab_scene::{Mesh, procedural};
+//!
+//! let ground = procedural::plane(20.0, 20.0, 1)?;
+//! let ball = procedural::sphere(1.0, 32, 16)?
+//!     .transformed(&DAffine3::from_translation(DVec3::new(0.0, 1.5, 0.0)));
+//! let scene = Mesh::merged(&[ground, ball]);
+//! assert_eq!(scene.triangle_count(), 2 + 2 * 32 * 15);
+//! assert_eq!(scene.group_names(), ["plane", "sphere"]);
+//! assert!(scene.bounds().contains(DVec3::new(0.0, 2.5, 0.0)));
+//! # Ok::<(), shadowlab_scene::SceneError>(())
+//! ```
+//!
+//! # Conventions
+//! - **Space:** right-handed, **y up** (as in `shadowlab-hull`); procedural shapes are centred on
+//!   the origin. Units are whatever the caller's are.
+//! - **Winding:** triangles are counter-clockwise seen from the side their normals face; for closed
+//!   procedural shapes that is outside, and their signed volume ([`Mesh::signed_volume`]) is
+//!   positive.
+//! - **Normals** are unit vectors per vertex. [`Mesh::new`] computes them area-weighted; a vertex
+//!   without a direction (only zero-area triangles, or none) gets [`FALLBACK_NORMAL`], +z.
+//! - **Degenerate triangles** (zero area) are allowed: rasterizers must cope. NaN or infinite
+//!   positions and out-of-range indices are errors.
+//! - **Groups:** every triangle has a group id indexing [`Mesh::group_names`]; [`Mesh::merged`]
+//!   keeps the parts apart by offsetting ids.
+//! - **Errors** are [`SceneError`] values naming the parameter, vertex, triangle, or file and line;
+//!   nothing panics on bad input except [`Mesh::transformed`] and [`Mesh::merged`], the documented
+//!   panicking forms of [`Mesh::try_transformed`] and [`Mesh::try_merged`].
+//! - **Determinism:** no randomness and no hash-order dependence; the same input gives
+//!   bit-identical meshes.
+
+#![deny(missing_docs)]
+
+mod bounds;
+mod error;
+mod mesh;
+mod normals;
+mod obj;
+mod obj_check;
+pub mod procedural;
+
+pub use bounds::Bounds;
+pub use error::{ObjElement, ObjProblem, SceneError};
+pub use mesh::{DEFAULT_GROUP_NAME, Mesh};
+pub use normals::FALLBACK_NORMAL;
+pub use obj::load_obj;
