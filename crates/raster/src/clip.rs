@@ -1,0 +1,151 @@
+//! Homogeneous clipping of the triangles that cross the near or far plane or leave the guard band
+//! (Sutherland–Hodgman in clip space, before the perspective divide).
+//!
+//! Every intersection is computed from the vertex inside the plane towards the one outside,
+//! whichever way the polygon runs, and the planes are applied in one fixed order. So two triangles
+//! sharing a clipped edge compute bit-identical new vertices, and stay watertight along it.
+
+use glam::DVec4;
+
+use crate::vertex::{Viewport, WindowVertex, code};
+
+/// The largest polygon clipping a triangle by six planes can produce.
+const MAX_POLYGON: usize = 9;
+
+/// A clipped piece of a triangle, ready to rasterize.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct ClippedTriangle {
+    /// The piece's vertices in window space.
+    pub(crate) vertices: [WindowVertex; 3],
+    /// The index of the triangle it was cut from.
+    pub(crate) triangle: u32,
+}
+
+/// A plane of the clip volume as the signed distance `d(c) ≥ 0` inside.
+fn distance(plane: u8, c: DVec4, (gx, gy): (f64, f64)) -> f64 {
+    match plane {
+        code::LEFT => c.x + gx * c.w,
+        code::RIGHT => gx * c.w - c.x,
+        code::BOTTOM => c.y + gy * c.w,
+        code::TOP => gy * c.w - c.y,
+        code::NEAR => c.z + c.w,
+        _ => c.w - c.z,
+    }
+}
+
+/// The planes in the order they are applied.
+const PLANES: [u8; 6] = [
+    code::NEAR,
+    code::FAR,
+    code::LEFT,
+    code::RIGHT,
+    code::BOTTOM,
+    code::TOP,
+];
+
+/// Clips the triangle `clip` (clip-space vertices) against the planes in `outside` (the union of its
+/// vertices' clip codes) and appends the pieces, fan-triangulated, to `out`. Pieces whose vertices
+/// end with `w ≤ 0` (only possible for matrices that are not projections) are dropped.
+pub(crate) fn clip_triangle(
+    clip: [DVec4; 3],
+    outside: u8,
+    triangle: u32,
+    viewport: &Viewport,
+    out: &mut Vec<ClippedTriangle>,
+) {
+    let guard = viewport.guard();
+    let mut polygon = [DVec4::ZERO; MAX_POLYGON];
+    let mut next = [DVec4::ZERO; MAX_POLYGON];
+    polygon[..3].copy_from_slice(&clip);
+    let mut count = 3;
+    for plane in PLANES {
+        if outside & plane == 0 {
+            continue;
+        }
+        let mut kept = 0;
+        for i in 0..count {
+            let a = polygon[i];
+            let b = polygon[(i + 1) % count];
+            let (da, db) = (distance(plane, a, guard), distance(plane, b, guard));
+            if da >= 0.0 {
+                next[kept] = a;
+                kept += 1;
+            }
+            if (da >= 0.0) != (db >= 0.0) {
+                // From the inside vertex towards the outside one, whichever comes first.
+                let (inside, outside_vertex, d_in, d_out) = if da >= 0.0 {
+                    (a, b, da, db)
+                } else {
+                    (b, a, db, da)
+                };
+                let t = d_in / (d_in - d_out);
+                next[kept] = inside + (outside_vertex - inside) * t;
+                kept += 1;
+            }
+        }
+        count = kept;
+        if count < 3 {
+            return;
+        }
+        polygon[..count].copy_from_slice(&next[..count]);
+    }
+    if polygon[..count].iter().any(|c| c.w <= 0.0) {
+        return;
+    }
+    let window: Vec<WindowVertex> = polygon[..count]
+        .iter()
+        .map(|&c| viewport.window_vertex(c))
+        .collect();
+    for i in 1..count - 1 {
+        out.push(ClippedTriangle {
+            vertices: [window[0], window[i], window[i + 1]],
+            triangle,
+        });
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_triangle_through_the_near_plane_becomes_a_quad() {
+        let viewport = Viewport::new(64, 64);
+        let a = DVec4::new(0.0, 0.0, -2.0, 1.0); // in front of the near plane (z < −w)
+        let b = DVec4::new(0.5, 0.0, 0.0, 1.0);
+        let c = DVec4::new(0.0, 0.5, 0.0, 1.0);
+        let mut out = Vec::new();
+        clip_triangle([a, b, c], code::NEAR, 7, &viewport, &mut out);
+        assert_eq!(out.len(), 2);
+        assert!(out.iter().all(|t| t.triangle == 7));
+        for t in &out {
+            for v in t.vertices {
+                assert!(v.z >= 0.0 && v.z <= 1.0);
+            }
+        }
+    }
+
+    #[test]
+    fn shared_edges_are_cut_identically_in_either_direction() {
+        let viewport = Viewport::new(64, 64);
+        let a = DVec4::new(0.1, 0.2, -3.0, 1.0);
+        let b = DVec4::new(0.3, -0.1, 0.7, 1.0);
+        let c = DVec4::new(-0.4, 0.6, 0.2, 1.0);
+        let d = DVec4::new(0.9, 0.9, 0.1, 1.0);
+        let (mut one, mut two) = (Vec::new(), Vec::new());
+        clip_triangle([a, b, c], code::NEAR, 0, &viewport, &mut one);
+        clip_triangle([b, a, d], code::NEAR, 1, &viewport, &mut two);
+        let new_vertices = |pieces: &[ClippedTriangle]| {
+            let mut v: Vec<(i32, i32)> = pieces
+                .iter()
+                .flat_map(|t| t.vertices.map(|v| (v.x, v.y)))
+                .collect();
+            v.sort_unstable();
+            v.dedup();
+            v
+        };
+        let (p, q) = (new_vertices(&one), new_vertices(&two));
+        let shared = p.iter().filter(|v| q.contains(v)).count();
+        assert_eq!(shared, 2, "b and the cut point on a–b: {p:?} {q:?}");
+    }
+}

@@ -1,0 +1,256 @@
+//! Depth formats and depth tests.
+//!
+//! Window depth `z ∈ [0, 1]` (GL's depth range: 0 at the near plane, 1 at the far plane) is
+//! interpolated in f64 and stored in one of several formats — an accuracy knob the analyzer can turn.
+//! Every format is stored as a 32-bit *key* whose unsigned order is the order of the depths it
+//! represents, so one integer comparison serves every format:
+//!
+//! | format | stored value | key |
+//! |---|---|---|
+//! | [`DepthFormat::F32`] | `z` rounded to f32 | the f32's bits (non-negative floats order as integers) |
+//! | [`DepthFormat::ReversedF32`] | `1 − z` rounded to f32, as reversed-Z stores it: f32's dense values near 0 go to the far plane | `u32::MAX −` its bits |
+//! | [`DepthFormat::Unorm24`] | `round(z·(2²⁴ − 1))` | that integer |
+//! | [`DepthFormat::Unorm16`] | `round(z·(2¹⁶ − 1))` | that integer |
+
+/// How depth is stored.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum DepthFormat {
+    /// 32-bit float depth (GL's `DEPTH_COMPONENT32F`).
+    #[default]
+    F32,
+    /// 32-bit float storing `1 − z`: the precision of a reversed-Z buffer, whose float resolution is
+    /// finest at the far plane where perspective depth is coarsest.
+    ReversedF32,
+    /// 24-bit unsigned normalised (`DEPTH_COMPONENT24`).
+    Unorm24,
+    /// 16-bit unsigned normalised (`DEPTH_COMPONENT16`).
+    Unorm16,
+}
+
+/// The largest 24-bit value.
+const UNORM24_MAX: f64 = 16_777_215.0;
+/// The largest 16-bit value.
+const UNORM16_MAX: f64 = 65_535.0;
+
+impl DepthFormat {
+    /// Every format.
+    pub const ALL: [Self; 4] = [Self::F32, Self::ReversedF32, Self::Unorm24, Self::Unorm16];
+
+    /// A short stable name: `f32`, `reversed-f32`, `unorm24`, `unorm16`.
+    #[must_use]
+    pub fn key_name(self) -> &'static str {
+        match self {
+            Self::F32 => "f32",
+            Self::ReversedF32 => "reversed-f32",
+            Self::Unorm24 => "unorm24",
+            Self::Unorm16 => "unorm16",
+        }
+    }
+
+    /// The key of window depth `z` (clamped to `[0, 1]`).
+    #[must_use]
+    pub fn encode(self, z: f64) -> u32 {
+        match self {
+            Self::F32 => F32Key::encode(z),
+            Self::ReversedF32 => ReversedF32Key::encode(z),
+            Self::Unorm24 => Unorm24Key::encode(z),
+            Self::Unorm16 => Unorm16Key::encode(z),
+        }
+    }
+
+    /// The window depth a key stands for, exactly as stored (so `decode(encode(z))` is `z` rounded
+    /// to the format).
+    #[must_use]
+    pub fn decode(self, key: u32) -> f64 {
+        match self {
+            Self::F32 => f64::from(f32::from_bits(key)),
+            Self::ReversedF32 => 1.0 - f64::from(f32::from_bits(u32::MAX - key)),
+            Self::Unorm24 => f64::from(key) / UNORM24_MAX,
+            Self::Unorm16 => f64::from(key) / UNORM16_MAX,
+        }
+    }
+}
+
+/// A depth format's encoding, as a type, so the rasterizer's inner loops are compiled once per
+/// format with no per-pixel branch.
+pub(crate) trait DepthKey {
+    /// The key of window depth `z`, clamped to `[0, 1]`.
+    fn encode(z: f64) -> u32;
+}
+
+/// [`DepthFormat::F32`].
+pub(crate) struct F32Key;
+/// [`DepthFormat::ReversedF32`].
+pub(crate) struct ReversedF32Key;
+/// [`DepthFormat::Unorm24`].
+pub(crate) struct Unorm24Key;
+/// [`DepthFormat::Unorm16`].
+pub(crate) struct Unorm16Key;
+
+impl DepthKey for F32Key {
+    #[inline]
+    fn encode(z: f64) -> u32 {
+        #[expect(
+            clippy::cast_possible_truncation,
+            reason = "rounding to f32 is the format"
+        )]
+        let stored = z.clamp(0.0, 1.0) as f32;
+        stored.to_bits()
+    }
+}
+
+impl DepthKey for ReversedF32Key {
+    #[inline]
+    fn encode(z: f64) -> u32 {
+        #[expect(
+            clippy::cast_possible_truncation,
+            reason = "rounding to f32 is the format"
+        )]
+        let stored = (1.0 - z.clamp(0.0, 1.0)) as f32;
+        u32::MAX - stored.to_bits()
+    }
+}
+
+impl DepthKey for Unorm24Key {
+    #[inline]
+    fn encode(z: f64) -> u32 {
+        unorm(z, UNORM24_MAX)
+    }
+}
+
+impl DepthKey for Unorm16Key {
+    #[inline]
+    fn encode(z: f64) -> u32 {
+        unorm(z, UNORM16_MAX)
+    }
+}
+
+/// `round(z·max)` for `z` clamped to `[0, 1]`, ties up.
+#[inline]
+fn unorm(z: f64, max: f64) -> u32 {
+    #[expect(
+        clippy::cast_possible_truncation,
+        clippy::cast_sign_loss,
+        reason = "the value lies in [0, max + 0.5] with max < 2^24"
+    )]
+    let value = (z.clamp(0.0, 1.0) * max + 0.5) as u32;
+    value
+}
+
+/// When a fragment passes the depth test, comparing its key with the stored one (GL's
+/// `glDepthFunc`). With [`DepthFormat::ReversedF32`] the keys are already ordered like depths, so
+/// `Less` still keeps the nearest surface.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum DepthCompare {
+    /// Never passes.
+    Never,
+    /// Passes if nearer.
+    #[default]
+    Less,
+    /// Passes if equal.
+    Equal,
+    /// Passes if nearer or equal.
+    LessEqual,
+    /// Passes if farther.
+    Greater,
+    /// Passes if not equal.
+    NotEqual,
+    /// Passes if farther or equal.
+    GreaterEqual,
+    /// Always passes (the last fragment in submission order wins).
+    Always,
+}
+
+impl DepthCompare {
+    /// Whether a fragment with key `new` replaces the stored key `old`.
+    #[inline]
+    #[must_use]
+    pub fn passes(self, new: u32, old: u32) -> bool {
+        match self {
+            Self::Never => false,
+            Self::Less => new < old,
+            Self::Equal => new == old,
+            Self::LessEqual => new <= old,
+            Self::Greater => new > old,
+            Self::NotEqual => new != old,
+            Self::GreaterEqual => new >= old,
+            Self::Always => true,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn keys_are_ordered_like_depths_in_every_format() {
+        for format in DepthFormat::ALL {
+            let mut last = format.encode(0.0);
+            for i in 1..=10_000 {
+                let z = f64::from(i) / 10_000.0;
+                let key = format.encode(z);
+                assert!(key >= last, "{format:?} at {z}");
+                last = key;
+            }
+            assert!(format.encode(0.0) < format.encode(1.0), "{format:?}");
+        }
+    }
+
+    #[test]
+    fn decoding_returns_the_stored_value() {
+        for format in DepthFormat::ALL {
+            // The ends are exact in every format; quarters only in the float ones.
+            let exact: &[f64] = match format {
+                DepthFormat::F32 | DepthFormat::ReversedF32 => &[0.0, 0.25, 0.5, 0.75, 1.0],
+                DepthFormat::Unorm24 | DepthFormat::Unorm16 => &[0.0, 1.0],
+            };
+            for &z in exact {
+                assert_eq!(format.decode(format.encode(z)), z, "{format:?} {z}");
+            }
+            // Re-encoding a decoded value gives the same key: the round trip is stable.
+            for i in 0..1000 {
+                let z = f64::from(i) / 999.0;
+                let key = format.encode(z);
+                assert_eq!(format.encode(format.decode(key)), key, "{format:?} {z}");
+            }
+        }
+        assert_eq!(DepthFormat::F32.encode(1.5), DepthFormat::F32.encode(1.0));
+        assert_eq!(DepthFormat::Unorm16.encode(-0.5), 0);
+    }
+
+    #[test]
+    fn reversed_f32_is_finer_near_the_far_plane() {
+        // Near z = 1 (where perspective depth crowds), f32 has a step of 2^-24 but 1 − z in f32 has
+        // far smaller steps.
+        let z = 1.0 - 1e-9;
+        assert_eq!(DepthFormat::F32.decode(DepthFormat::F32.encode(z)), 1.0);
+        let reversed = DepthFormat::ReversedF32.decode(DepthFormat::ReversedF32.encode(z));
+        assert!((reversed - z).abs() < 1e-15);
+    }
+
+    #[test]
+    fn compare_functions() {
+        use DepthCompare::*;
+        let table = [
+            (Never, [false, false, false]),
+            (Less, [true, false, false]),
+            (Equal, [false, true, false]),
+            (LessEqual, [true, true, false]),
+            (Greater, [false, false, true]),
+            (NotEqual, [true, false, true]),
+            (GreaterEqual, [false, true, true]),
+            (Always, [true, true, true]),
+        ];
+        for (compare, expected) in table {
+            assert_eq!(
+                [
+                    compare.passes(1, 2),
+                    compare.passes(2, 2),
+                    compare.passes(3, 2)
+                ],
+                expected
+            );
+        }
+    }
+}

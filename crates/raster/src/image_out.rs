@@ -1,0 +1,116 @@
+//! Writing results as image files, in memory (the caller writes the bytes atomically).
+//!
+//! Every writer takes a row-major image with **row 0 at the bottom** (as the targets return them)
+//! and writes the **top row first**, as image files expect.
+//!
+//! * [`depth_exr`]: window depth as one f32 channel `Z` — exactly what an f32 target stores.
+//! * [`depth_png16`]: a 16-bit greyscale preview, `round(z·65535)`, far = white.
+//! * [`rgb_png`]: 8-bit colour.
+
+use std::io::Cursor;
+
+use crate::error::RasterError;
+
+/// Row-major `width × height` values with row 0 at the bottom, yielded top row first.
+fn top_down<T: Copy>(values: &[T], width: usize, height: usize) -> impl Iterator<Item = T> + '_ {
+    (0..height)
+        .rev()
+        .flat_map(move |row| values[row * width..(row + 1) * width].iter().copied())
+}
+
+fn check_len(
+    len: usize,
+    width: u32,
+    height: u32,
+    per_pixel: usize,
+) -> Result<(usize, usize), RasterError> {
+    let (w, h) = (width as usize, height as usize);
+    if w == 0 || h == 0 || len != w * h * per_pixel {
+        return Err(RasterError::ImageSize {
+            width,
+            height,
+            values: len,
+        });
+    }
+    Ok((w, h))
+}
+
+/// Window depths as an OpenEXR file with one f32 channel `Z` (each depth rounded to f32, which is
+/// exact for depths read from an f32 target).
+pub fn depth_exr(depths: &[f64], width: u32, height: u32) -> Result<Vec<u8>, RasterError> {
+    use exr::prelude::*;
+    let (w, h) = check_len(depths.len(), width, height, 1)?;
+    #[expect(clippy::cast_possible_truncation, reason = "EXR stores f32 depth")]
+    let samples: Vec<f32> = top_down(depths, w, h).map(|z| z as f32).collect();
+    let channel = AnyChannel::new("Z", FlatSamples::F32(samples));
+    let image = Image::from_channels((w, h), AnyChannels::sort(SmallVec::from_vec(vec![channel])));
+    let mut bytes = Cursor::new(Vec::new());
+    image
+        .write()
+        .to_buffered(&mut bytes)
+        .map_err(|e| RasterError::Encode(e.to_string()))?;
+    Ok(bytes.into_inner())
+}
+
+/// Window depths as a 16-bit greyscale PNG preview: `round(z·65535)`, far (1) white.
+pub fn depth_png16(depths: &[f64], width: u32, height: u32) -> Result<Vec<u8>, RasterError> {
+    let (w, h) = check_len(depths.len(), width, height, 1)?;
+    #[expect(
+        clippy::cast_possible_truncation,
+        clippy::cast_sign_loss,
+        reason = "clamped to [0, 65535.5)"
+    )]
+    let values: Vec<u16> = top_down(depths, w, h)
+        .map(|z| (z.clamp(0.0, 1.0) * 65535.0 + 0.5) as u16)
+        .collect();
+    let image = image::ImageBuffer::<image::Luma<u16>, Vec<u16>>::from_raw(width, height, values)
+        .ok_or(RasterError::ImageSize {
+        width,
+        height,
+        values: depths.len(),
+    })?;
+    encode_png(&image::DynamicImage::ImageLuma16(image))
+}
+
+/// 8-bit RGB pixels (`[r, g, b]` per pixel, row 0 at the bottom) as a PNG.
+pub fn rgb_png(pixels: &[[u8; 3]], width: u32, height: u32) -> Result<Vec<u8>, RasterError> {
+    let (w, h) = check_len(pixels.len(), width, height, 1)?;
+    let values: Vec<u8> = top_down(pixels, w, h).flatten().collect();
+    let image = image::RgbImage::from_raw(width, height, values).ok_or(RasterError::ImageSize {
+        width,
+        height,
+        values: pixels.len(),
+    })?;
+    encode_png(&image::DynamicImage::ImageRgb8(image))
+}
+
+fn encode_png(image: &image::DynamicImage) -> Result<Vec<u8>, RasterError> {
+    let mut bytes = Cursor::new(Vec::new());
+    image
+        .write_to(&mut bytes, image::ImageFormat::Png)
+        .map_err(|e| RasterError::Encode(e.to_string()))?;
+    Ok(bytes.into_inner())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn files_start_with_their_magic_and_sizes_are_checked() {
+        let depths = [0.0, 0.25, 0.5, 1.0, 0.75, 0.125];
+        let exr = depth_exr(&depths, 3, 2).unwrap();
+        assert_eq!(&exr[..4], &[0x76, 0x2f, 0x31, 0x01]);
+        let png = depth_png16(&depths, 3, 2).unwrap();
+        assert_eq!(&png[..8], b"\x89PNG\r\n\x1a\n");
+        assert!(depth_png16(&depths, 4, 2).is_err());
+        let rgb = rgb_png(&[[255, 0, 0]; 6], 2, 3).unwrap();
+        assert_eq!(&rgb[..4], b"\x89PNG");
+    }
+
+    #[test]
+    fn rows_are_flipped_to_top_first() {
+        let v: Vec<u8> = top_down(&[1, 2, 3, 4, 5, 6], 3, 2).collect();
+        assert_eq!(v, [4, 5, 6, 1, 2, 3]);
+    }
+}

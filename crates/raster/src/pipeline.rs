@@ -1,0 +1,526 @@
+//! The draw call: vertex stage, binning, tiles.
+//!
+//! 1. **Vertices** (parallel over fixed chunks): transform to clip space in f64, classify against the
+//!    clip volume, and snap the ones inside to the window grid. Shared vertices are snapped once, so
+//!    the triangles that share an edge see identical endpoints.
+//! 2. **Binning** (parallel over fixed chunks of triangles): trivially reject, clip the few that
+//!    cross the near or far plane or the guard band, classify (degenerate, culled, empty), and list
+//!    each triangle under every tile its pixel box touches — sorted by tile within the chunk, in
+//!    submission order.
+//! 3. **Tiles** (parallel over tiles): each tile walks the chunks in order and their lists for it, so
+//!    it sees its triangles in submission order, and rasterizes them into its own pixels.
+//!
+//! No pixel is written by two threads and every tile's triangle order is the submission order, so
+//! the output is bit-identical for any number of threads and any run.
+
+use glam::{DMat4, DVec3};
+use rayon::prelude::*;
+
+use crate::clip::{ClippedTriangle, clip_triangle};
+use crate::depth::{DepthCompare, DepthFormat, F32Key, ReversedF32Key, Unorm16Key, Unorm24Key};
+use crate::error::RasterError;
+use crate::kernel::{Sink, SpanDepth, TileKernel, TileRect, rasterize};
+use crate::target::{DepthPairTarget, DepthTarget, EyeTarget, TILE_SHIFT, TILE_SIZE, TargetSize};
+use crate::triangle::{CullMode, Setup, Verdict, classify};
+use crate::vertex::{Viewport, WindowVertex, code, transform};
+
+/// Vertices per parallel work item of the vertex stage.
+const VERTEX_CHUNK: usize = 8192;
+/// Triangles per parallel work item of binning. Any size gives the same output.
+const TRIANGLE_CHUNK: usize = 8192;
+/// Marks a bin entry that indexes the chunk's clipped pieces rather than the mesh's triangles.
+const CLIPPED: u32 = 1 << 31;
+
+/// Triangles to draw: positions and counter-clockwise (for front faces) index triples.
+#[derive(Clone, Copy, Debug)]
+pub struct Triangles<'a> {
+    positions: &'a [DVec3],
+    triangles: &'a [[u32; 3]],
+}
+
+impl<'a> Triangles<'a> {
+    /// Triangles over `positions`. Indices are checked when drawing.
+    #[must_use]
+    pub fn new(positions: &'a [DVec3], triangles: &'a [[u32; 3]]) -> Self {
+        Self {
+            positions,
+            triangles,
+        }
+    }
+
+    /// The vertex positions.
+    #[must_use]
+    pub fn positions(&self) -> &'a [DVec3] {
+        self.positions
+    }
+
+    /// The index triples.
+    #[must_use]
+    pub fn triangles(&self) -> &'a [[u32; 3]] {
+        self.triangles
+    }
+}
+
+/// How a draw treats its triangles.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct RasterOptions {
+    /// The depth test (default: [`DepthCompare::Less`]). Ignored by depth-pair targets, which keep
+    /// the two nearest.
+    pub compare: DepthCompare,
+    /// Which faces to discard (default: none).
+    pub cull: CullMode,
+}
+
+/// What happened to the triangles of a draw. Every triangle is counted exactly once among
+/// `drawn`, `degenerate`, `culled`, `empty`, `outside` and `clipped`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct DrawStats {
+    /// Triangles submitted.
+    pub triangles: u64,
+    /// Rasterized without clipping.
+    pub drawn: u64,
+    /// Zero area after snapping (never drawn).
+    pub degenerate: u64,
+    /// Discarded by the cull mode.
+    pub culled: u64,
+    /// Inside the clip volume but covering no pixel centre's bounding box.
+    pub empty: u64,
+    /// Entirely outside one plane of the clip volume.
+    pub outside: u64,
+    /// Crossing the near or far plane or the guard band, and clipped.
+    pub clipped: u64,
+    /// Pieces the clipped triangles were cut into that were rasterized.
+    pub clipped_pieces: u64,
+    /// Fragments that passed the depth test (or, for [`Rasterizer::for_each_fragment`], all covered
+    /// pixels).
+    pub fragments: u64,
+}
+
+impl DrawStats {
+    fn add(&mut self, other: &Self) {
+        self.triangles += other.triangles;
+        self.drawn += other.drawn;
+        self.degenerate += other.degenerate;
+        self.culled += other.culled;
+        self.empty += other.empty;
+        self.outside += other.outside;
+        self.clipped += other.clipped;
+        self.clipped_pieces += other.clipped_pieces;
+        self.fragments += other.fragments;
+    }
+}
+
+/// One covered pixel, as [`Rasterizer::for_each_fragment`] reports it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Fragment {
+    /// Column, from the left.
+    pub x: u32,
+    /// Row, from the bottom.
+    pub y: u32,
+    /// Interpolated window depth in `[0, 1]`, before any storage format.
+    pub depth: f64,
+    /// The index of the triangle covering it.
+    pub triangle: u32,
+}
+
+/// The rasterizer: options plus scratch memory reused from draw to draw.
+#[derive(Debug, Default)]
+pub struct Rasterizer {
+    options: RasterOptions,
+    window: Vec<WindowVertex>,
+    codes: Vec<u8>,
+}
+
+/// The triangles binned to tiles by one chunk of the submission.
+struct ChunkBins {
+    /// Entries grouped by tile: triangle indices, or `CLIPPED | piece`.
+    entries: Vec<u32>,
+    /// `entries[starts[t]..starts[t + 1]]` are tile t's.
+    starts: Vec<u32>,
+    /// The clipped pieces this chunk made.
+    pieces: Vec<ClippedTriangle>,
+    stats: DrawStats,
+    /// The first bad input of the chunk, if any.
+    error: Option<RasterError>,
+}
+
+/// Everything the tile pass needs.
+struct Binned<'a> {
+    size: TargetSize,
+    cull: CullMode,
+    window: &'a [WindowVertex],
+    triangles: &'a [[u32; 3]],
+    chunks: Vec<ChunkBins>,
+}
+
+impl Rasterizer {
+    /// A rasterizer with these options.
+    #[must_use]
+    pub fn new(options: RasterOptions) -> Self {
+        Self {
+            options,
+            ..Self::default()
+        }
+    }
+
+    /// The options.
+    #[must_use]
+    pub fn options(&self) -> RasterOptions {
+        self.options
+    }
+
+    /// Draws `mesh` transformed by `clip_from_world` (GL clip space) into a depth target.
+    pub fn draw_depth(
+        &mut self,
+        target: &mut DepthTarget,
+        mesh: Triangles<'_>,
+        clip_from_world: &DMat4,
+    ) -> Result<DrawStats, RasterError> {
+        let options = self.options;
+        let binned = self.bin(target.size(), mesh, clip_from_world)?;
+        let fragments = with_key(target.format(), |key| match key {
+            Key::F32 => target.draw_tiles::<F32Key, _>(options.compare, &binned),
+            Key::ReversedF32 => target.draw_tiles::<ReversedF32Key, _>(options.compare, &binned),
+            Key::Unorm24 => target.draw_tiles::<Unorm24Key, _>(options.compare, &binned),
+            Key::Unorm16 => target.draw_tiles::<Unorm16Key, _>(options.compare, &binned),
+        });
+        Ok(binned.finish(fragments))
+    }
+
+    /// Draws `mesh` into a target keeping the nearest and second-nearest depth of every pixel.
+    pub fn draw_depth_pair(
+        &mut self,
+        target: &mut DepthPairTarget,
+        mesh: Triangles<'_>,
+        clip_from_world: &DMat4,
+    ) -> Result<DrawStats, RasterError> {
+        let binned = self.bin(target.size(), mesh, clip_from_world)?;
+        let fragments = with_key(target.format(), |key| match key {
+            Key::F32 => target.draw_tiles::<F32Key, _>(&binned),
+            Key::ReversedF32 => target.draw_tiles::<ReversedF32Key, _>(&binned),
+            Key::Unorm24 => target.draw_tiles::<Unorm24Key, _>(&binned),
+            Key::Unorm16 => target.draw_tiles::<Unorm16Key, _>(&binned),
+        });
+        Ok(binned.finish(fragments))
+    }
+
+    /// Draws `mesh` into an eye target: depth and the visible triangle's index per pixel.
+    pub fn draw_eye(
+        &mut self,
+        target: &mut EyeTarget,
+        mesh: Triangles<'_>,
+        clip_from_world: &DMat4,
+    ) -> Result<DrawStats, RasterError> {
+        let options = self.options;
+        let binned = self.bin(target.size(), mesh, clip_from_world)?;
+        let fragments = with_key(target.format(), |key| match key {
+            Key::F32 => target.draw_tiles::<F32Key, _>(options.compare, &binned),
+            Key::ReversedF32 => target.draw_tiles::<ReversedF32Key, _>(options.compare, &binned),
+            Key::Unorm24 => target.draw_tiles::<Unorm24Key, _>(options.compare, &binned),
+            Key::Unorm16 => target.draw_tiles::<Unorm16Key, _>(options.compare, &binned),
+        });
+        Ok(binned.finish(fragments))
+    }
+
+    /// Calls `f` for every pixel centre covered by `mesh` on a `size` target, without a depth test:
+    /// tile by tile (rows of 64 × 64 tiles from the bottom left), and within a tile in submission
+    /// order, row by row. The order is the same on every run and thread count.
+    pub fn for_each_fragment(
+        &mut self,
+        size: TargetSize,
+        mesh: Triangles<'_>,
+        clip_from_world: &DMat4,
+        mut f: impl FnMut(Fragment),
+    ) -> Result<DrawStats, RasterError> {
+        let binned = self.bin(size, mesh, clip_from_world)?;
+        let mut fragments = 0;
+        for tile in 0..size.tile_count() {
+            let (x0, y0, _, _) = size.tile_rect(tile);
+            #[expect(
+                clippy::cast_possible_truncation,
+                clippy::cast_sign_loss,
+                reason = "tile origins lie in the target"
+            )]
+            let mut sink = CallbackSink {
+                x0: x0 as u32,
+                y0: y0 as u32,
+                f: &mut f,
+            };
+            fragments += binned.run(tile, &mut sink);
+        }
+        Ok(binned.finish(fragments))
+    }
+
+    /// Steps 1 and 2: vertices and binning.
+    fn bin<'a>(
+        &'a mut self,
+        size: TargetSize,
+        mesh: Triangles<'a>,
+        m: &DMat4,
+    ) -> Result<Binned<'a>, RasterError> {
+        if !m.is_finite() {
+            return Err(RasterError::NonFiniteMatrix);
+        }
+        if mesh.triangles.len() >= CLIPPED as usize {
+            return Err(RasterError::TooManyTriangles {
+                count: mesh.triangles.len(),
+            });
+        }
+        let viewport = Viewport::new(size.width(), size.height());
+        let n = mesh.positions.len();
+        self.window.resize(n, WindowVertex::default());
+        self.codes.resize(n, 0);
+        mesh.positions
+            .par_chunks(VERTEX_CHUNK)
+            .zip(self.window.par_chunks_mut(VERTEX_CHUNK))
+            .zip(self.codes.par_chunks_mut(VERTEX_CHUNK))
+            .for_each(|((positions, window), codes)| {
+                for ((p, w), c) in positions.iter().zip(window).zip(codes) {
+                    let clip = transform(m, *p);
+                    *c = viewport.clip_code(clip);
+                    if *c == 0 {
+                        *w = viewport.window_vertex(clip);
+                    }
+                }
+            });
+        let (window, codes) = (&self.window[..], &self.codes[..]);
+        let cull = self.options.cull;
+        let chunks: Vec<ChunkBins> = mesh
+            .triangles
+            .par_chunks(TRIANGLE_CHUNK)
+            .enumerate()
+            .map(|(c, triangles)| {
+                let first = c * TRIANGLE_CHUNK;
+                bin_chunk(
+                    first,
+                    triangles,
+                    mesh.positions,
+                    window,
+                    codes,
+                    m,
+                    &viewport,
+                    size,
+                    cull,
+                )
+            })
+            .collect();
+        if let Some(error) = chunks.iter().find_map(|c| c.error.clone()) {
+            return Err(error);
+        }
+        Ok(Binned {
+            size,
+            cull,
+            window,
+            triangles: mesh.triangles,
+            chunks,
+        })
+    }
+}
+
+/// The four depth encodings, for choosing a compiled kernel once per draw.
+enum Key {
+    F32,
+    ReversedF32,
+    Unorm24,
+    Unorm16,
+}
+
+fn with_key<R>(format: DepthFormat, f: impl FnOnce(Key) -> R) -> R {
+    f(match format {
+        DepthFormat::F32 => Key::F32,
+        DepthFormat::ReversedF32 => Key::ReversedF32,
+        DepthFormat::Unorm24 => Key::Unorm24,
+        DepthFormat::Unorm16 => Key::Unorm16,
+    })
+}
+
+#[expect(
+    clippy::too_many_arguments,
+    reason = "the binning of one chunk needs all of the draw"
+)]
+fn bin_chunk(
+    first: usize,
+    triangles: &[[u32; 3]],
+    positions: &[DVec3],
+    window: &[WindowVertex],
+    codes: &[u8],
+    m: &DMat4,
+    viewport: &Viewport,
+    size: TargetSize,
+    cull: CullMode,
+) -> ChunkBins {
+    let (width, height) = (i64::from(size.width()), i64::from(size.height()));
+    let mut stats = DrawStats::default();
+    let mut listed: Vec<(u32, u32)> = Vec::with_capacity(triangles.len() + triangles.len() / 4);
+    let mut pieces = Vec::new();
+    let mut error = None;
+    let n = positions.len();
+    for (k, t) in triangles.iter().enumerate() {
+        let id = first + k;
+        if let Some(&vertex) = t.iter().find(|&&v| v as usize >= n) {
+            error = Some(RasterError::IndexOutOfRange {
+                triangle: id,
+                vertex,
+                vertex_count: n,
+            });
+            break;
+        }
+        let [a, b, c] = t.map(|v| v as usize);
+        let (ca, cb, cc) = (codes[a], codes[b], codes[c]);
+        if (ca | cb | cc) & code::NOT_FINITE != 0 {
+            let bad = [a, b, c]
+                .into_iter()
+                .find(|&v| codes[v] & code::NOT_FINITE != 0);
+            error = Some(RasterError::NonFiniteVertex {
+                vertex: bad.unwrap_or(a),
+            });
+            break;
+        }
+        stats.triangles += 1;
+        #[expect(
+            clippy::cast_possible_truncation,
+            reason = "ids are below CLIPPED, checked per draw"
+        )]
+        let entry = id as u32;
+        if ca | cb | cc == 0 {
+            match classify(&[window[a], window[b], window[c]], cull, width, height) {
+                Verdict::Degenerate => stats.degenerate += 1,
+                Verdict::Culled => stats.culled += 1,
+                Verdict::Empty => stats.empty += 1,
+                Verdict::Draw(bounds) => {
+                    stats.drawn += 1;
+                    list_tiles(&bounds, entry, size, &mut listed);
+                }
+            }
+        } else if ca & cb & cc != 0 {
+            stats.outside += 1;
+        } else {
+            stats.clipped += 1;
+            let clip = [
+                transform(m, positions[a]),
+                transform(m, positions[b]),
+                transform(m, positions[c]),
+            ];
+            let before = pieces.len();
+            clip_triangle(clip, ca | cb | cc, entry, viewport, &mut pieces);
+            for (p, piece) in pieces.iter().enumerate().skip(before) {
+                if let Verdict::Draw(bounds) = classify(&piece.vertices, cull, width, height) {
+                    stats.clipped_pieces += 1;
+                    #[expect(clippy::cast_possible_truncation, reason = "pieces per chunk < 2^31")]
+                    let piece_entry = CLIPPED | p as u32;
+                    list_tiles(&bounds, piece_entry, size, &mut listed);
+                }
+            }
+        }
+    }
+    // Counting sort by tile; stable, so each tile keeps submission order.
+    let tiles = size.tile_count();
+    let mut starts = vec![0u32; tiles + 1];
+    for &(tile, _) in &listed {
+        starts[tile as usize + 1] += 1;
+    }
+    for t in 0..tiles {
+        starts[t + 1] += starts[t];
+    }
+    let mut cursor = starts.clone();
+    let mut entries = vec![0u32; listed.len()];
+    for &(tile, entry) in &listed {
+        let slot = &mut cursor[tile as usize];
+        entries[*slot as usize] = entry;
+        *slot += 1;
+    }
+    ChunkBins {
+        entries,
+        starts,
+        pieces,
+        stats,
+        error,
+    }
+}
+
+/// Lists `entry` under every tile the pixel box touches.
+fn list_tiles(
+    b: &crate::triangle::PixelBox,
+    entry: u32,
+    size: TargetSize,
+    out: &mut Vec<(u32, u32)>,
+) {
+    let tiles_x = size.tiles_x();
+    for ty in b.min_j >> TILE_SHIFT..=b.max_j >> TILE_SHIFT {
+        for tx in b.min_i >> TILE_SHIFT..=b.max_i >> TILE_SHIFT {
+            #[expect(
+                clippy::cast_possible_truncation,
+                clippy::cast_sign_loss,
+                reason = "tile coordinates are small and non-negative"
+            )]
+            let t = (ty as usize * tiles_x + tx as usize) as u32;
+            out.push((t, entry));
+        }
+    }
+}
+
+impl TileKernel for Binned<'_> {
+    fn run<S: Sink>(&self, tile: usize, sink: &mut S) -> u64 {
+        let (x0, y0, width, height) = self.size.tile_rect(tile);
+        let rect = TileRect {
+            x0,
+            y0,
+            width,
+            height,
+        };
+        let (w, h) = (i64::from(self.size.width()), i64::from(self.size.height()));
+        let mut passed = 0;
+        for chunk in &self.chunks {
+            let range = chunk.starts[tile] as usize..chunk.starts[tile + 1] as usize;
+            for &entry in &chunk.entries[range] {
+                let (vertices, triangle) = if entry & CLIPPED == 0 {
+                    let t = self.triangles[entry as usize];
+                    (t.map(|v| self.window[v as usize]), entry)
+                } else {
+                    let piece = &chunk.pieces[(entry & !CLIPPED) as usize];
+                    (piece.vertices, piece.triangle)
+                };
+                if let Verdict::Draw(bounds) = classify(&vertices, self.cull, w, h) {
+                    let setup = Setup::new(&vertices);
+                    passed += rasterize(&setup, &bounds, &rect, triangle, sink);
+                }
+            }
+        }
+        passed
+    }
+}
+
+impl Binned<'_> {
+    fn finish(&self, fragments: u64) -> DrawStats {
+        let mut stats = DrawStats::default();
+        for chunk in &self.chunks {
+            stats.add(&chunk.stats);
+        }
+        stats.fragments = fragments;
+        stats
+    }
+}
+
+/// Hands every covered pixel to a callback.
+struct CallbackSink<'f, F> {
+    x0: u32,
+    y0: u32,
+    f: &'f mut F,
+}
+
+impl<F: FnMut(Fragment)> Sink for CallbackSink<'_, F> {
+    fn span(&mut self, start: usize, count: usize, depth: SpanDepth, triangle: u32) -> u64 {
+        for (k, index) in (0u32..).zip(start..start + count) {
+            #[expect(clippy::cast_possible_truncation, reason = "index < TILE_PIXELS")]
+            let (dx, dy) = ((index % TILE_SIZE) as u32, (index / TILE_SIZE) as u32);
+            let z = depth.at(k).clamp(0.0, 1.0);
+            (self.f)(Fragment {
+                x: self.x0 + dx,
+                y: self.y0 + dy,
+                depth: z,
+                triangle,
+            });
+        }
+        count as u64
+    }
+}

@@ -1,0 +1,447 @@
+//! Render targets. Pixels are stored tile by tile (each tile a contiguous block, rows within it),
+//! so each tile can be written by one thread with no sharing; the accessors return ordinary
+//! row-major images with row 0 at the bottom (GL's window convention — image writers flip it).
+
+use crate::depth::{DepthCompare, DepthFormat, DepthKey};
+use crate::error::RasterError;
+use crate::fixed::MAX_TARGET_SIZE;
+use crate::kernel::{Sink, SpanDepth, TileKernel};
+
+/// Tile side in pixels, `2^TILE_SHIFT`.
+pub(crate) const TILE_SIZE: usize = 1 << TILE_SHIFT;
+/// log2 of the tile side.
+pub(crate) const TILE_SHIFT: u32 = 6;
+/// Pixels per tile.
+pub(crate) const TILE_PIXELS: usize = TILE_SIZE * TILE_SIZE;
+
+/// The triangle id stored where no triangle covers a pixel.
+pub const NO_TRIANGLE: u32 = u32::MAX;
+
+/// The size of a target and its tiling.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TargetSize {
+    width: u32,
+    height: u32,
+    tiles_x: usize,
+    tiles_y: usize,
+}
+
+impl TargetSize {
+    /// A `width × height` target; `Err` if a side is 0 or above [`MAX_TARGET_SIZE`].
+    pub fn new(width: u32, height: u32) -> Result<Self, RasterError> {
+        for (name, value) in [("width", width), ("height", height)] {
+            if value == 0 || value > MAX_TARGET_SIZE {
+                return Err(RasterError::TargetSize { name, value });
+            }
+        }
+        Ok(Self {
+            width,
+            height,
+            tiles_x: (width as usize).div_ceil(TILE_SIZE),
+            tiles_y: (height as usize).div_ceil(TILE_SIZE),
+        })
+    }
+
+    /// Width in pixels.
+    #[must_use]
+    pub fn width(&self) -> u32 {
+        self.width
+    }
+
+    /// Height in pixels.
+    #[must_use]
+    pub fn height(&self) -> u32 {
+        self.height
+    }
+
+    /// Number of tiles.
+    pub(crate) fn tile_count(&self) -> usize {
+        self.tiles_x * self.tiles_y
+    }
+
+    /// Tiles per row.
+    pub(crate) fn tiles_x(&self) -> usize {
+        self.tiles_x
+    }
+
+    /// The pixel rectangle of tile `t`: `(first column, first row, columns, rows)`.
+    pub(crate) fn tile_rect(&self, t: usize) -> (i64, i64, i64, i64) {
+        let (tx, ty) = (t % self.tiles_x, t / self.tiles_x);
+        let (x0, y0) = (tx * TILE_SIZE, ty * TILE_SIZE);
+        let w = (self.width as usize - x0).min(TILE_SIZE);
+        let h = (self.height as usize - y0).min(TILE_SIZE);
+        #[expect(
+            clippy::cast_possible_wrap,
+            reason = "sizes are at most MAX_TARGET_SIZE"
+        )]
+        let rect = (x0 as i64, y0 as i64, w as i64, h as i64);
+        rect
+    }
+
+    fn pixel_count(&self) -> usize {
+        self.width as usize * self.height as usize
+    }
+
+    /// Converts tiled storage to a row-major image (row 0 at the bottom).
+    fn untile<T: Copy + Default>(&self, tiled: &[T]) -> Vec<T> {
+        let (w, h) = (self.width as usize, self.height as usize);
+        let mut out = vec![T::default(); self.pixel_count()];
+        for (y, row) in out.chunks_mut(w).enumerate().take(h) {
+            let ty = y / TILE_SIZE;
+            let in_tile_row = (y % TILE_SIZE) * TILE_SIZE;
+            for (tx, span) in row.chunks_mut(TILE_SIZE).enumerate() {
+                let start = (ty * self.tiles_x + tx) * TILE_PIXELS + in_tile_row;
+                span.copy_from_slice(&tiled[start..start + span.len()]);
+            }
+        }
+        out
+    }
+}
+
+/// A depth-only target: the shadow map.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DepthTarget {
+    size: TargetSize,
+    format: DepthFormat,
+    keys: Vec<u32>,
+}
+
+impl DepthTarget {
+    /// The target's size.
+    #[must_use]
+    pub fn size(&self) -> TargetSize {
+        self.size
+    }
+
+    /// The depth format it stores.
+    #[must_use]
+    pub fn format(&self) -> DepthFormat {
+        self.format
+    }
+
+    /// A `width × height` depth target storing `format`, cleared to the far plane (depth 1).
+    pub fn new(width: u32, height: u32, format: DepthFormat) -> Result<Self, RasterError> {
+        let size = TargetSize::new(width, height)?;
+        Ok(Self {
+            size,
+            format,
+            keys: vec![format.encode(1.0); size.tile_count() * TILE_PIXELS],
+        })
+    }
+
+    /// Sets every pixel to window depth `depth` (clamped to `[0, 1]`), in parallel.
+    pub fn clear(&mut self, depth: f64) {
+        fill(&mut self.keys, self.format.encode(depth));
+    }
+
+    /// The stored keys, row-major with row 0 at the bottom (see [`DepthFormat`] for what a key is).
+    #[must_use]
+    pub fn keys(&self) -> Vec<u32> {
+        self.size.untile(&self.keys)
+    }
+
+    /// Window depths in `[0, 1]` exactly as stored, row-major with row 0 at the bottom.
+    #[must_use]
+    pub fn depths(&self) -> Vec<f64> {
+        let format = self.format;
+        self.keys().into_iter().map(|k| format.decode(k)).collect()
+    }
+}
+
+impl DepthTarget {
+    /// Runs `kernel` on every tile in parallel with a sink writing into that tile only; returns the
+    /// number of fragments that passed.
+    pub(crate) fn draw_tiles<K: DepthKey, R: TileKernel>(
+        &mut self,
+        compare: DepthCompare,
+        kernel: &R,
+    ) -> u64 {
+        use rayon::prelude::*;
+        self.keys
+            .par_chunks_mut(TILE_PIXELS)
+            .enumerate()
+            .map(|(t, keys)| {
+                let mut sink = DepthSink::<K> {
+                    keys,
+                    compare,
+                    key: std::marker::PhantomData,
+                };
+                kernel.run(t, &mut sink)
+            })
+            .sum()
+    }
+}
+
+/// The nearest and second-nearest depth in one pass: what the second-depth, midpoint and
+/// dual-depth biases need. The depth test is fixed: nearer keys win.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DepthPairTarget {
+    size: TargetSize,
+    format: DepthFormat,
+    nearest: Vec<u32>,
+    second: Vec<u32>,
+}
+
+impl DepthPairTarget {
+    /// The target's size.
+    #[must_use]
+    pub fn size(&self) -> TargetSize {
+        self.size
+    }
+
+    /// The depth format it stores.
+    #[must_use]
+    pub fn format(&self) -> DepthFormat {
+        self.format
+    }
+
+    /// A `width × height` target of depth pairs, both cleared to the far plane.
+    pub fn new(width: u32, height: u32, format: DepthFormat) -> Result<Self, RasterError> {
+        let size = TargetSize::new(width, height)?;
+        let far = format.encode(1.0);
+        Ok(Self {
+            size,
+            format,
+            nearest: vec![far; size.tile_count() * TILE_PIXELS],
+            second: vec![far; size.tile_count() * TILE_PIXELS],
+        })
+    }
+
+    /// Sets both depths of every pixel to the far plane.
+    pub fn clear(&mut self) {
+        let far = self.format.encode(1.0);
+        fill(&mut self.nearest, far);
+        fill(&mut self.second, far);
+    }
+
+    /// Nearest depths, row-major with row 0 at the bottom.
+    #[must_use]
+    pub fn nearest(&self) -> Vec<f64> {
+        let format = self.format;
+        self.size
+            .untile(&self.nearest)
+            .into_iter()
+            .map(|k| format.decode(k))
+            .collect()
+    }
+
+    /// Second-nearest depths (1 where fewer than two surfaces cover the pixel).
+    #[must_use]
+    pub fn second(&self) -> Vec<f64> {
+        let format = self.format;
+        self.size
+            .untile(&self.second)
+            .into_iter()
+            .map(|k| format.decode(k))
+            .collect()
+    }
+}
+
+impl DepthPairTarget {
+    /// Runs `kernel` on every tile in parallel with a sink writing into that tile only; returns the
+    /// number of fragments that passed.
+    pub(crate) fn draw_tiles<K: DepthKey, R: TileKernel>(&mut self, kernel: &R) -> u64 {
+        use rayon::prelude::*;
+        self.nearest
+            .par_chunks_mut(TILE_PIXELS)
+            .zip(self.second.par_chunks_mut(TILE_PIXELS))
+            .enumerate()
+            .map(|(t, (nearest, second))| {
+                let mut sink = PairSink::<K> {
+                    nearest,
+                    second,
+                    key: std::marker::PhantomData,
+                };
+                kernel.run(t, &mut sink)
+            })
+            .sum()
+    }
+}
+
+/// The eye pass: depth and the id of the visible triangle per pixel, from which
+/// [`crate::EyeTarget::resolve`] computes perspective-correct positions and normals.
+#[derive(Clone, Debug, PartialEq)]
+pub struct EyeTarget {
+    size: TargetSize,
+    format: DepthFormat,
+    keys: Vec<u32>,
+    triangles: Vec<u32>,
+}
+
+impl EyeTarget {
+    /// The target's size.
+    #[must_use]
+    pub fn size(&self) -> TargetSize {
+        self.size
+    }
+
+    /// The depth format it stores.
+    #[must_use]
+    pub fn format(&self) -> DepthFormat {
+        self.format
+    }
+
+    /// A `width × height` eye target, cleared (depth 1, no triangle).
+    pub fn new(width: u32, height: u32, format: DepthFormat) -> Result<Self, RasterError> {
+        let size = TargetSize::new(width, height)?;
+        Ok(Self {
+            size,
+            format,
+            keys: vec![format.encode(1.0); size.tile_count() * TILE_PIXELS],
+            triangles: vec![NO_TRIANGLE; size.tile_count() * TILE_PIXELS],
+        })
+    }
+
+    /// Clears depth to the far plane and the triangle ids to [`NO_TRIANGLE`].
+    pub fn clear(&mut self) {
+        fill(&mut self.keys, self.format.encode(1.0));
+        fill(&mut self.triangles, NO_TRIANGLE);
+    }
+
+    /// Window depths as stored, row-major with row 0 at the bottom.
+    #[must_use]
+    pub fn depths(&self) -> Vec<f64> {
+        let format = self.format;
+        self.size
+            .untile(&self.keys)
+            .into_iter()
+            .map(|k| format.decode(k))
+            .collect()
+    }
+
+    /// The visible triangle of each pixel ([`NO_TRIANGLE`] where none), row-major, row 0 at the
+    /// bottom.
+    #[must_use]
+    pub fn triangles(&self) -> Vec<u32> {
+        self.size.untile(&self.triangles)
+    }
+}
+
+impl EyeTarget {
+    /// Runs `kernel` on every tile in parallel with a sink writing into that tile only; returns the
+    /// number of fragments that passed.
+    pub(crate) fn draw_tiles<K: DepthKey, R: TileKernel>(
+        &mut self,
+        compare: DepthCompare,
+        kernel: &R,
+    ) -> u64 {
+        use rayon::prelude::*;
+        self.keys
+            .par_chunks_mut(TILE_PIXELS)
+            .zip(self.triangles.par_chunks_mut(TILE_PIXELS))
+            .enumerate()
+            .map(|(t, (keys, triangles))| {
+                let mut sink = EyeSink::<K> {
+                    keys,
+                    triangles,
+                    compare,
+                    key: std::marker::PhantomData,
+                };
+                kernel.run(t, &mut sink)
+            })
+            .sum()
+    }
+}
+
+fn fill(values: &mut [u32], value: u32) {
+    use rayon::prelude::*;
+    values
+        .par_chunks_mut(TILE_PIXELS)
+        .for_each(|tile| tile.fill(value));
+}
+
+/// Writes depth keys through the depth test.
+struct DepthSink<'a, K> {
+    keys: &'a mut [u32],
+    compare: DepthCompare,
+    key: std::marker::PhantomData<K>,
+}
+
+impl<K: DepthKey> Sink for DepthSink<'_, K> {
+    #[inline]
+    fn span(&mut self, start: usize, count: usize, depth: SpanDepth, _triangle: u32) -> u64 {
+        let keys = &mut self.keys[start..start + count];
+        // One loop per comparison, so each compiles to straight-line code.
+        match self.compare {
+            DepthCompare::Never => 0,
+            DepthCompare::Less => depth_span::<K>(keys, depth, |new, old| new < old),
+            DepthCompare::Equal => depth_span::<K>(keys, depth, |new, old| new == old),
+            DepthCompare::LessEqual => depth_span::<K>(keys, depth, |new, old| new <= old),
+            DepthCompare::Greater => depth_span::<K>(keys, depth, |new, old| new > old),
+            DepthCompare::NotEqual => depth_span::<K>(keys, depth, |new, old| new != old),
+            DepthCompare::GreaterEqual => depth_span::<K>(keys, depth, |new, old| new >= old),
+            DepthCompare::Always => depth_span::<K>(keys, depth, |_, _| true),
+        }
+    }
+}
+
+/// Depth-tests and writes one span; returns how many fragments passed.
+#[inline(always)]
+fn depth_span<K: DepthKey>(
+    keys: &mut [u32],
+    depth: SpanDepth,
+    passes: impl Fn(u32, u32) -> bool,
+) -> u64 {
+    let mut passed = 0;
+    for (k, old) in (0u32..).zip(keys.iter_mut()) {
+        let key = K::encode(depth.at(k));
+        let pass = passes(key, *old);
+        *old = if pass { key } else { *old };
+        passed += u64::from(pass);
+    }
+    passed
+}
+
+/// Keeps the two nearest keys.
+struct PairSink<'a, K> {
+    nearest: &'a mut [u32],
+    second: &'a mut [u32],
+    key: std::marker::PhantomData<K>,
+}
+
+impl<K: DepthKey> Sink for PairSink<'_, K> {
+    #[inline]
+    fn span(&mut self, start: usize, count: usize, depth: SpanDepth, _triangle: u32) -> u64 {
+        let nearest = &mut self.nearest[start..start + count];
+        let second = &mut self.second[start..start + count];
+        let mut passed = 0;
+        for ((k, near), next) in (0u32..).zip(nearest.iter_mut()).zip(second.iter_mut()) {
+            let key = K::encode(depth.at(k));
+            if key < *near {
+                *next = *near;
+                *near = key;
+                passed += 1;
+            } else if key < *next {
+                *next = key;
+                passed += 1;
+            }
+        }
+        passed
+    }
+}
+
+/// Writes depth keys and triangle ids through the depth test.
+struct EyeSink<'a, K> {
+    keys: &'a mut [u32],
+    triangles: &'a mut [u32],
+    compare: DepthCompare,
+    key: std::marker::PhantomData<K>,
+}
+
+impl<K: DepthKey> Sink for EyeSink<'_, K> {
+    #[inline]
+    fn span(&mut self, start: usize, count: usize, depth: SpanDepth, triangle: u32) -> u64 {
+        let keys = &mut self.keys[start..start + count];
+        let ids = &mut self.triangles[start..start + count];
+        let mut passed = 0;
+        for ((k, old), id) in (0u32..).zip(keys.iter_mut()).zip(ids.iter_mut()) {
+            let key = K::encode(depth.at(k));
+            if self.compare.passes(key, *old) {
+                *old = key;
+                *id = triangle;
+                passed += 1;
+            }
+        }
+        passed
+    }
+}

@@ -1,0 +1,173 @@
+//! Triangle setup: orientation and culling, integer edge functions with the fill rule folded in,
+//! the pixel bounding box, and the depth plane.
+//!
+//! # Edge functions and the fill rule
+//! With the triangle made counter-clockwise in window space (y up), the edge from `a` to `b` has
+//! `E(P) = (b_x − a_x)(P_y − a_y) − (b_y − a_y)(P_x − a_x)`, positive on the triangle's side. It is
+//! evaluated exactly, in `i64` grid units, at pixel centres. A centre is covered when every `E > 0`;
+//! a centre exactly on an edge (`E = 0`) is covered only if the edge is a *left* edge (running down,
+//! `b_y < a_y`) or a *bottom* edge (horizontal, running in +x). These are GL's window coordinates
+//! with row 0 at the bottom; stored with row 0 first, as GL stores framebuffers, this is the
+//! "top-left" rule of D3D and of Mesa's llvmpipe rendering into a framebuffer object. Two triangles
+//! sharing an edge see it with opposite directions, so a centre on it is covered by exactly one of
+//! them. The `≥ 0`/`> 0` distinction is folded into a constant: `E − (included ? 0 : 1) ≥ 0`.
+
+use crate::fixed::{HALF_PIXEL, SUBPIXELS, first_centre_at_or_after, last_centre_at_or_before};
+use crate::vertex::WindowVertex;
+
+/// Which faces are discarded.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum CullMode {
+    /// Draw every non-degenerate triangle.
+    #[default]
+    None,
+    /// Discard back faces: clockwise in window space (y up), GL's default front face being CCW.
+    Back,
+    /// Discard front faces (counter-clockwise in window space).
+    Front,
+}
+
+/// What setup decided about a triangle before rasterizing it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Verdict {
+    /// Zero area in grid units: never drawn.
+    Degenerate,
+    /// Discarded by the cull mode.
+    Culled,
+    /// Its bounding box holds no pixel centre of the target.
+    Empty,
+    /// To be rasterized over the given pixel bounding box (inclusive).
+    Draw(PixelBox),
+}
+
+/// An inclusive rectangle of pixel indices.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct PixelBox {
+    pub(crate) min_i: i64,
+    pub(crate) max_i: i64,
+    pub(crate) min_j: i64,
+    pub(crate) max_j: i64,
+}
+
+/// Twice the signed area in grid units², positive for counter-clockwise (y up).
+#[inline]
+fn doubled_area(v: &[WindowVertex; 3]) -> i64 {
+    let (x0, y0) = (i64::from(v[0].x), i64::from(v[0].y));
+    (i64::from(v[1].x) - x0) * (i64::from(v[2].y) - y0)
+        - (i64::from(v[2].x) - x0) * (i64::from(v[1].y) - y0)
+}
+
+/// Orientation, culling and the pixel bounding box clipped to a `width × height` target.
+#[inline]
+pub(crate) fn classify(v: &[WindowVertex; 3], cull: CullMode, width: i64, height: i64) -> Verdict {
+    let area = doubled_area(v);
+    if area == 0 {
+        return Verdict::Degenerate;
+    }
+    match cull {
+        CullMode::Back if area < 0 => return Verdict::Culled,
+        CullMode::Front if area > 0 => return Verdict::Culled,
+        _ => {}
+    }
+    let (min_x, max_x) = min_max(v[0].x, v[1].x, v[2].x);
+    let (min_y, max_y) = min_max(v[0].y, v[1].y, v[2].y);
+    let b = PixelBox {
+        min_i: first_centre_at_or_after(min_x).max(0),
+        max_i: last_centre_at_or_before(max_x).min(width - 1),
+        min_j: first_centre_at_or_after(min_y).max(0),
+        max_j: last_centre_at_or_before(max_y).min(height - 1),
+    };
+    if b.min_i > b.max_i || b.min_j > b.max_j {
+        Verdict::Empty
+    } else {
+        Verdict::Draw(b)
+    }
+}
+
+#[inline]
+fn min_max(a: i32, b: i32, c: i32) -> (i64, i64) {
+    (i64::from(a.min(b).min(c)), i64::from(a.max(b).max(c)))
+}
+
+/// One edge function at pixel centres: `E(i, j) = step_i·i + step_j·j + offset`, covered when ≥ 0
+/// (the fill rule is in `offset`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Edge {
+    pub(crate) step_i: i64,
+    pub(crate) step_j: i64,
+    pub(crate) offset: i64,
+}
+
+impl Edge {
+    fn new(a: WindowVertex, b: WindowVertex) -> Self {
+        let (ax, ay) = (i64::from(a.x), i64::from(a.y));
+        let (dx, dy) = (i64::from(b.x) - ax, i64::from(b.y) - ay);
+        let included = dy < 0 || (dy == 0 && dx > 0);
+        Self {
+            step_i: -dy * SUBPIXELS,
+            step_j: dx * SUBPIXELS,
+            offset: dx * (HALF_PIXEL - ay) - dy * (HALF_PIXEL - ax) - i64::from(!included),
+        }
+    }
+
+    /// The value at pixel `(i, j)`.
+    #[inline]
+    pub(crate) fn at(&self, i: i64, j: i64) -> i64 {
+        self.step_i * i + self.step_j * j + self.offset
+    }
+}
+
+/// A triangle ready for its pixels: counter-clockwise edges and the depth plane.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Setup {
+    pub(crate) edges: [Edge; 3],
+    /// The reference vertex's grid coordinates and depth.
+    origin_x: i64,
+    origin_y: i64,
+    origin_z: f64,
+    /// Depth change per grid unit in x and y.
+    dz_dx: f64,
+    dz_dy: f64,
+}
+
+impl Setup {
+    /// The setup of a triangle [`classify`] accepted (non-zero area).
+    #[inline]
+    pub(crate) fn new(v: &[WindowVertex; 3]) -> Self {
+        let area = doubled_area(v);
+        debug_assert_ne!(area, 0);
+        let [a, b, c] = if area > 0 { *v } else { [v[0], v[2], v[1]] };
+        let area = area.abs() as f64;
+        let (ax, ay) = (i64::from(a.x), i64::from(a.y));
+        // Grid deltas are below 2^25 in magnitude: exact in f64.
+        let (bx, by) = ((i64::from(b.x) - ax) as f64, (i64::from(b.y) - ay) as f64);
+        let (cx, cy) = ((i64::from(c.x) - ax) as f64, (i64::from(c.y) - ay) as f64);
+        let (bz, cz) = (b.z - a.z, c.z - a.z);
+        let inverse_area = 1.0 / area;
+        Self {
+            edges: [Edge::new(a, b), Edge::new(b, c), Edge::new(c, a)],
+            origin_x: ax,
+            origin_y: ay,
+            origin_z: a.z,
+            dz_dx: (bz * cy - cz * by) * inverse_area,
+            dz_dy: (cz * bx - bz * cx) * inverse_area,
+        }
+    }
+
+    /// The depth at the centres of row `j`, as a start value for column `i` and a per-column
+    /// increment of the exact grid offset: `z(i, j) = row + dz_dx·x_offset`, `x_offset` the exact
+    /// f64 grid distance from the reference vertex to the centre (it grows by `SUBPIXELS` per
+    /// column, exactly). The value of a pixel depends only on the triangle, never on the tile.
+    #[inline]
+    pub(crate) fn depth_row(&self, i: i64, j: i64) -> (f64, f64) {
+        let y_offset = (j * SUBPIXELS + HALF_PIXEL - self.origin_y) as f64;
+        let x_offset = (i * SUBPIXELS + HALF_PIXEL - self.origin_x) as f64;
+        (self.origin_z + self.dz_dy * y_offset, x_offset)
+    }
+
+    /// Depth change per grid unit in x.
+    #[inline]
+    pub(crate) fn dz_dx(&self) -> f64 {
+        self.dz_dx
+    }
+}
