@@ -19,7 +19,7 @@ use rayon::prelude::*;
 use crate::clip::{ClippedTriangle, clip_triangle};
 use crate::depth::{DepthCompare, DepthFormat, F32Key, ReversedF32Key, Unorm16Key, Unorm24Key};
 use crate::error::RasterError;
-use crate::kernel::{Sink, SpanDepth, TileKernel, TileRect, rasterize};
+use crate::kernel::{BLOCK, Lanes, Sink, TileKernel, TileRect, rasterize};
 use crate::target::{DepthPairTarget, DepthTarget, EyeTarget, TILE_SHIFT, TILE_SIZE, TargetSize};
 use crate::triangle::{CullMode, Setup, Verdict, classify};
 use crate::vertex::{Viewport, WindowVertex, code, transform};
@@ -509,18 +509,21 @@ struct CallbackSink<'f, F> {
 }
 
 impl<F: FnMut(Fragment)> Sink for CallbackSink<'_, F> {
-    fn span(&mut self, start: usize, count: usize, depth: SpanDepth, triangle: u32) -> u64 {
-        for (k, index) in (0u32..).zip(start..start + count) {
+    fn row(&mut self, start: usize, covered: &Lanes<u32>, z: &Lanes<f64>, triangle: u32) -> u64 {
+        let mut count = 0;
+        for k in (0..BLOCK).filter(|&k| covered[k] != 0) {
+            let index = start + k;
             #[expect(clippy::cast_possible_truncation, reason = "index < TILE_PIXELS")]
             let (dx, dy) = ((index % TILE_SIZE) as u32, (index / TILE_SIZE) as u32);
-            let z = depth.at(k).clamp(0.0, 1.0);
+            let depth = z[k].clamp(0.0, 1.0);
             (self.f)(Fragment {
                 x: self.x0 + dx,
                 y: self.y0 + dy,
-                depth: z,
+                depth,
                 triangle,
             });
+            count += 1;
         }
-        count as u64
+        count
     }
 }

@@ -5,7 +5,7 @@
 use crate::depth::{DepthCompare, DepthFormat, DepthKey};
 use crate::error::RasterError;
 use crate::fixed::MAX_TARGET_SIZE;
-use crate::kernel::{Sink, SpanDepth, TileKernel};
+use crate::kernel::{BLOCK, Lanes, Sink, TileKernel};
 
 /// Tile side in pixels, `2^TILE_SHIFT`.
 pub(crate) const TILE_SIZE: usize = 1 << TILE_SHIFT;
@@ -161,12 +161,22 @@ impl DepthTarget {
             .par_chunks_mut(TILE_PIXELS)
             .enumerate()
             .map(|(t, keys)| {
-                let mut sink = DepthSink::<K> {
-                    keys,
-                    compare,
-                    key: std::marker::PhantomData,
-                };
-                kernel.run(t, &mut sink)
+                // The common test gets its own loop, without a per-fragment branch.
+                if compare == DepthCompare::Less {
+                    let mut sink = DepthSink::<K, Less> {
+                        keys,
+                        compare: Less,
+                        key: std::marker::PhantomData,
+                    };
+                    kernel.run(t, &mut sink)
+                } else {
+                    let mut sink = DepthSink::<K, DepthCompare> {
+                        keys,
+                        compare,
+                        key: std::marker::PhantomData,
+                    };
+                    kernel.run(t, &mut sink)
+                }
             })
             .sum()
     }
@@ -331,13 +341,23 @@ impl EyeTarget {
             .zip(self.triangles.par_chunks_mut(TILE_PIXELS))
             .enumerate()
             .map(|(t, (keys, triangles))| {
-                let mut sink = EyeSink::<K> {
-                    keys,
-                    triangles,
-                    compare,
-                    key: std::marker::PhantomData,
-                };
-                kernel.run(t, &mut sink)
+                if compare == DepthCompare::Less {
+                    let mut sink = EyeSink::<K, Less> {
+                        keys,
+                        triangles,
+                        compare: Less,
+                        key: std::marker::PhantomData,
+                    };
+                    kernel.run(t, &mut sink)
+                } else {
+                    let mut sink = EyeSink::<K, DepthCompare> {
+                        keys,
+                        triangles,
+                        compare,
+                        key: std::marker::PhantomData,
+                    };
+                    kernel.run(t, &mut sink)
+                }
             })
             .sum()
     }
@@ -350,46 +370,86 @@ fn fill(values: &mut [u32], value: u32) {
         .for_each(|tile| tile.fill(value));
 }
 
+/// A depth comparison as a type, so the common `Less` compiles without a per-fragment branch.
+pub(crate) trait Compare {
+    fn passes(&self, new: u32, old: u32) -> bool;
+
+    /// The stored value after a covered (`covered` all ones) or uncovered (zero) fragment with key
+    /// `new` meets `old`, and all ones if the fragment passed (zero otherwise).
+    #[inline(always)]
+    fn merge(&self, covered: u32, new: u32, old: u32) -> (u32, u32) {
+        let pass = covered & mask(self.passes(new, old));
+        (select(pass, new, old), pass)
+    }
+}
+
+/// `new < old`.
+pub(crate) struct Less;
+
+impl Compare for Less {
+    #[inline(always)]
+    fn passes(&self, new: u32, old: u32) -> bool {
+        new < old
+    }
+
+    /// `min(new | !covered, old)`: an uncovered lane offers the largest key, which never wins; a
+    /// fragment passed exactly where the value changed.
+    #[inline(always)]
+    fn merge(&self, covered: u32, new: u32, old: u32) -> (u32, u32) {
+        let merged = (new | !covered).min(old);
+        (merged, mask(merged != old))
+    }
+}
+
+impl Compare for DepthCompare {
+    #[inline(always)]
+    fn passes(&self, new: u32, old: u32) -> bool {
+        DepthCompare::passes(*self, new, old)
+    }
+}
+
 /// Writes depth keys through the depth test.
-struct DepthSink<'a, K> {
+struct DepthSink<'a, K, C> {
     keys: &'a mut [u32],
-    compare: DepthCompare,
+    compare: C,
     key: std::marker::PhantomData<K>,
 }
 
-impl<K: DepthKey> Sink for DepthSink<'_, K> {
-    #[inline]
-    fn span(&mut self, start: usize, count: usize, depth: SpanDepth, _triangle: u32) -> u64 {
-        let keys = &mut self.keys[start..start + count];
-        // One loop per comparison, so each compiles to straight-line code.
-        match self.compare {
-            DepthCompare::Never => 0,
-            DepthCompare::Less => depth_span::<K>(keys, depth, |new, old| new < old),
-            DepthCompare::Equal => depth_span::<K>(keys, depth, |new, old| new == old),
-            DepthCompare::LessEqual => depth_span::<K>(keys, depth, |new, old| new <= old),
-            DepthCompare::Greater => depth_span::<K>(keys, depth, |new, old| new > old),
-            DepthCompare::NotEqual => depth_span::<K>(keys, depth, |new, old| new != old),
-            DepthCompare::GreaterEqual => depth_span::<K>(keys, depth, |new, old| new >= old),
-            DepthCompare::Always => depth_span::<K>(keys, depth, |_, _| true),
-        }
-    }
+/// The eight keys of a block row.
+#[inline(always)]
+fn lanes(values: &mut [u32], start: usize) -> &mut Lanes<u32> {
+    (&mut values[start..start + BLOCK])
+        .try_into()
+        .expect("a block row lies inside the tile")
 }
 
-/// Depth-tests and writes one span; returns how many fragments passed.
+/// All ones where `pass`, zero otherwise (written as a select of constants, which compiles to a
+/// vector compare; going through `u32::from(bool)` makes LLVM shuffle single bits).
 #[inline(always)]
-fn depth_span<K: DepthKey>(
-    keys: &mut [u32],
-    depth: SpanDepth,
-    passes: impl Fn(u32, u32) -> bool,
-) -> u64 {
-    let mut passed = 0;
-    for (k, old) in (0u32..).zip(keys.iter_mut()) {
-        let key = K::encode(depth.at(k));
-        let pass = passes(key, *old);
-        *old = if pass { key } else { *old };
-        passed += u64::from(pass);
+fn mask(pass: bool) -> u32 {
+    if pass { u32::MAX } else { 0 }
+}
+
+/// `new` where `pass` (all ones), `old` elsewhere: a select, not a branch — whether a fragment
+/// passes is as good as random, and a mispredicted branch costs more than the whole test.
+#[inline(always)]
+fn select(pass: u32, new: u32, old: u32) -> u32 {
+    (new & pass) | (old & !pass)
+}
+
+impl<K: DepthKey, C: Compare> Sink for DepthSink<'_, K, C> {
+    #[inline(always)]
+    fn row(&mut self, start: usize, covered: &Lanes<u32>, z: &Lanes<f64>, _triangle: u32) -> u64 {
+        let keys = lanes(self.keys, start);
+        let mut passed = 0;
+        for k in 0..BLOCK {
+            let key = K::encode(z[k]);
+            let (merged, pass) = self.compare.merge(covered[k], key, keys[k]);
+            keys[k] = merged;
+            passed += pass & 1;
+        }
+        u64::from(passed)
     }
-    passed
 }
 
 /// Keeps the two nearest keys.
@@ -400,47 +460,44 @@ struct PairSink<'a, K> {
 }
 
 impl<K: DepthKey> Sink for PairSink<'_, K> {
-    #[inline]
-    fn span(&mut self, start: usize, count: usize, depth: SpanDepth, _triangle: u32) -> u64 {
-        let nearest = &mut self.nearest[start..start + count];
-        let second = &mut self.second[start..start + count];
+    #[inline(always)]
+    fn row(&mut self, start: usize, covered: &Lanes<u32>, z: &Lanes<f64>, _triangle: u32) -> u64 {
+        let nearest = lanes(self.nearest, start);
+        let second = lanes(self.second, start);
         let mut passed = 0;
-        for ((k, near), next) in (0u32..).zip(nearest.iter_mut()).zip(second.iter_mut()) {
-            let key = K::encode(depth.at(k));
-            if key < *near {
-                *next = *near;
-                *near = key;
-                passed += 1;
-            } else if key < *next {
-                *next = key;
-                passed += 1;
-            }
+        for k in 0..BLOCK {
+            let key = K::encode(z[k]);
+            let (near, next) = (nearest[k], second[k]);
+            let nearer = covered[k] & mask(key < near);
+            let between = covered[k] & !nearer & mask(key < next);
+            nearest[k] = select(nearer, key, near);
+            second[k] = select(nearer, near, select(between, key, next));
+            passed += u64::from((nearer | between) & 1);
         }
         passed
     }
 }
 
 /// Writes depth keys and triangle ids through the depth test.
-struct EyeSink<'a, K> {
+struct EyeSink<'a, K, C> {
     keys: &'a mut [u32],
     triangles: &'a mut [u32],
-    compare: DepthCompare,
+    compare: C,
     key: std::marker::PhantomData<K>,
 }
 
-impl<K: DepthKey> Sink for EyeSink<'_, K> {
-    #[inline]
-    fn span(&mut self, start: usize, count: usize, depth: SpanDepth, triangle: u32) -> u64 {
-        let keys = &mut self.keys[start..start + count];
-        let ids = &mut self.triangles[start..start + count];
+impl<K: DepthKey, C: Compare> Sink for EyeSink<'_, K, C> {
+    #[inline(always)]
+    fn row(&mut self, start: usize, covered: &Lanes<u32>, z: &Lanes<f64>, triangle: u32) -> u64 {
+        let keys = lanes(self.keys, start);
+        let ids = lanes(self.triangles, start);
         let mut passed = 0;
-        for ((k, old), id) in (0u32..).zip(keys.iter_mut()).zip(ids.iter_mut()) {
-            let key = K::encode(depth.at(k));
-            if self.compare.passes(key, *old) {
-                *old = key;
-                *id = triangle;
-                passed += 1;
-            }
+        for k in 0..BLOCK {
+            let key = K::encode(z[k]);
+            let (merged, pass) = self.compare.merge(covered[k], key, keys[k]);
+            keys[k] = merged;
+            ids[k] = select(pass, triangle, ids[k]);
+            passed += u64::from(pass & 1);
         }
         passed
     }

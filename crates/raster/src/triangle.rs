@@ -154,20 +154,17 @@ impl Setup {
         }
     }
 
-    /// The depth at the centres of row `j`, as a start value for column `i` and a per-column
-    /// increment of the exact grid offset: `z(i, j) = row + dz_dx·x_offset`, `x_offset` the exact
-    /// f64 grid distance from the reference vertex to the centre (it grows by `SUBPIXELS` per
-    /// column, exactly). The value of a pixel depends only on the triangle, never on the tile.
-    #[inline]
-    pub(crate) fn depth_row(&self, i: i64, j: i64) -> (f64, f64) {
-        let y_offset = (j * SUBPIXELS + HALF_PIXEL - self.origin_y) as f64;
-        let x_offset = (i * SUBPIXELS + HALF_PIXEL - self.origin_x) as f64;
-        (self.origin_z + self.dz_dy * y_offset, x_offset)
+    /// The part of the depth that depends on the row: `z0 + dz_dy·y_offset(j)`, with `y_offset` the
+    /// exact grid distance from the reference vertex to row `j`'s centres.
+    #[inline(always)]
+    pub(crate) fn row_depth(&self, j: i64) -> f64 {
+        self.origin_z + self.dz_dy * (j * SUBPIXELS + HALF_PIXEL - self.origin_y) as f64
     }
 
-    /// Depth change per grid unit in x.
-    #[inline]
-    pub(crate) fn dz_dx(&self) -> f64 {
-        self.dz_dx
+    /// The part that depends on the column: `dz_dx·x_offset(i)`. A pixel's depth is
+    /// `row_depth(j) + column_depth(i)`, so it depends on the triangle alone, never on the tile.
+    #[inline(always)]
+    pub(crate) fn column_depth(&self, i: i64) -> f64 {
+        self.dz_dx * (i * SUBPIXELS + HALF_PIXEL - self.origin_x) as f64
     }
 }
