@@ -17,10 +17,10 @@ use crate::triangle::{PixelBox, Setup};
 /// Receives the fragments of one tile, eight pixels of a row at a time.
 pub(crate) trait Sink {
     /// The eight pixels at tile indices `start..start + 8` (`start` a multiple of 8, within one row
-    /// of the tile): lane k is covered when `covered[k]` is all ones (zero otherwise), and has
-    /// window depth `z[k]`. Returns how many covered fragments passed (were stored). Uncovered lanes
-    /// must be left as they are.
-    fn row(&mut self, start: usize, covered: &Lanes<u32>, z: &Lanes<f64>, triangle: u32) -> u64;
+    /// of the tile): lane k is *not* covered when `uncovered[k]` is all ones (covered when zero), and
+    /// has window depth `z[k]`. Returns how many covered fragments passed (were stored). Uncovered
+    /// lanes must be left as they are.
+    fn row(&mut self, start: usize, uncovered: &Lanes<u32>, z: &Lanes<f64>, triangle: u32) -> u64;
 }
 
 /// Eight lanes: one row of a block.
@@ -67,17 +67,17 @@ fn step(s: i64) -> i32 {
     v
 }
 
-/// The coverage of one row of a block as lane masks: all ones where every edge value is ≥ 0 (the
-/// OR of the three has its sign bit clear) and the column is inside the triangle's box.
+/// The coverage of one row of a block as lane masks, inverted: all ones where some edge value is
+/// negative (the OR of the three has its sign bit set, spread by an arithmetic shift) or the column
+/// is outside the triangle's box; zero where the centre is covered.
 #[inline(always)]
-fn row_coverage(a: &Lanes<i32>, b: &Lanes<i32>, c: &Lanes<i32>, inside: &Lanes<u32>) -> Lanes<u32> {
-    let mut covered = [0u32; BLOCK];
-    for k in 0..BLOCK {
+fn row_uncovered(edges: [i32; 3], lanes: &[Lanes<i32>; 3], outside: &Lanes<u32>) -> Lanes<u32> {
+    std::array::from_fn(|k| {
+        let v = (edges[0] + lanes[0][k]) | (edges[1] + lanes[1][k]) | (edges[2] + lanes[2][k]);
         #[expect(clippy::cast_sign_loss, reason = "the sign, spread to every bit")]
-        let outside = ((a[k] | b[k] | c[k]) >> 31) as u32;
-        covered[k] = !outside & inside[k];
-    }
-    covered
+        let sign = (v >> 31) as u32;
+        sign | outside[k]
+    })
 }
 
 /// Sends the fragments of a set-up triangle that fall in `tile` (within the triangle's pixel box) to
@@ -98,17 +98,8 @@ pub(crate) fn rasterize<S: Sink>(
         return 0;
     }
     let edges = setup.edges;
-    let lanes = |s: i64| COLUMNS.map(|k| k * step(s));
-    let (la, lb, lc) = (
-        lanes(edges[0].step_i),
-        lanes(edges[1].step_i),
-        lanes(edges[2].step_i),
-    );
-    let (ra, rb, rc) = (
-        step(edges[0].step_j),
-        step(edges[1].step_j),
-        step(edges[2].step_j),
-    );
+    let lanes = edges.map(|e| COLUMNS.map(|k| k * step(e.step_i)));
+    let row_steps = edges.map(|e| step(e.step_j));
     let mut passed = 0;
     let mut bj = j0;
     // Blocks are aligned to the tile's 8-column grid, so each block row is one aligned run of
@@ -118,13 +109,11 @@ pub(crate) fn rasterize<S: Sink>(
         let rows = (j1 - bj + 1).min(BLOCK_I64);
         let mut bi = first_block_column;
         while bi <= i1 {
-            let inside = COLUMNS.map(|k| {
+            let outside = COLUMNS.map(|k| {
                 let i = bi + i64::from(k);
-                if i0 <= i && i <= i1 { u32::MAX } else { 0 }
+                if i0 <= i && i <= i1 { 0 } else { u32::MAX }
             });
-            let mut a = la.map(|l| corner(edges[0].at(bi, bj)) + l);
-            let mut b = lb.map(|l| corner(edges[1].at(bi, bj)) + l);
-            let mut c = lc.map(|l| corner(edges[2].at(bi, bj)) + l);
+            let mut corners = edges.map(|e| corner(e.at(bi, bj)));
             // The column part of the depth, once per block; the row part once per row.
             let column_z = COLUMNS.map(|k| setup.column_depth(bi + i64::from(k)));
             #[expect(
@@ -134,14 +123,12 @@ pub(crate) fn rasterize<S: Sink>(
             )]
             let mut start = ((bj - tile.y0) as usize) * TILE_SIZE + (bi - tile.x0) as usize;
             for r in 0..rows {
-                let covered = row_coverage(&a, &b, &c, &inside);
+                let uncovered = row_uncovered(corners, &lanes, &outside);
                 let row_z = setup.row_depth(bj + r);
                 let z = column_z.map(|cz| row_z + cz);
-                passed += sink.row(start, &covered, &z, triangle);
-                for k in 0..BLOCK {
-                    a[k] += ra;
-                    b[k] += rb;
-                    c[k] += rc;
+                passed += sink.row(start, &uncovered, &z, triangle);
+                for (corner, step) in corners.iter_mut().zip(row_steps) {
+                    *corner += step;
                 }
                 start += TILE_SIZE;
             }
@@ -181,21 +168,15 @@ mod tests {
                 for step_j in steps {
                     // Edge functions step by multiples of 256 (SUBPIXELS per pixel).
                     let (si, sj) = (step_i & !255, step_j & !255);
-                    let mut a = COLUMNS.map(|k| corner(e) + k * step(si));
-                    let zero = [0; BLOCK];
+                    let lanes = [COLUMNS.map(|k| k * step(si)), [0; BLOCK], [0; BLOCK]];
+                    let mut edges = [corner(e), 0, 0];
                     for r in 0..8i64 {
-                        let covered = row_coverage(&a, &zero, &zero, &[u32::MAX; BLOCK]);
-                        for (k, lane) in (0..8i64).zip(covered) {
+                        let uncovered = row_uncovered(edges, &lanes, &[0; BLOCK]);
+                        for (k, lane) in (0..8i64).zip(uncovered) {
                             let exact = e + sj * r + si * k >= 0;
-                            assert_eq!(
-                                exact,
-                                lane == u32::MAX,
-                                "e {e} si {si} sj {sj} r {r} k {k}"
-                            );
+                            assert_eq!(exact, lane == 0, "e {e} si {si} sj {sj} r {r} k {k}");
                         }
-                        for lane in &mut a {
-                            *lane += step(sj);
-                        }
+                        edges[0] += step(sj);
                     }
                 }
             }

@@ -509,9 +509,9 @@ struct CallbackSink<'f, F> {
 }
 
 impl<F: FnMut(Fragment)> Sink for CallbackSink<'_, F> {
-    fn row(&mut self, start: usize, covered: &Lanes<u32>, z: &Lanes<f64>, triangle: u32) -> u64 {
+    fn row(&mut self, start: usize, uncovered: &Lanes<u32>, z: &Lanes<f64>, triangle: u32) -> u64 {
         let mut count = 0;
-        for k in (0..BLOCK).filter(|&k| covered[k] != 0) {
+        for k in (0..BLOCK).filter(|&k| uncovered[k] == 0) {
             let index = start + k;
             #[expect(clippy::cast_possible_truncation, reason = "index < TILE_PIXELS")]
             let (dx, dy) = ((index % TILE_SIZE) as u32, (index / TILE_SIZE) as u32);

@@ -374,11 +374,11 @@ fn fill(values: &mut [u32], value: u32) {
 pub(crate) trait Compare {
     fn passes(&self, new: u32, old: u32) -> bool;
 
-    /// The stored value after a covered (`covered` all ones) or uncovered (zero) fragment with key
-    /// `new` meets `old`, and all ones if the fragment passed (zero otherwise).
+    /// The stored value after a fragment with key `new`, uncovered where `uncovered` is all ones,
+    /// meets `old`; and all ones if the fragment passed (zero otherwise).
     #[inline(always)]
-    fn merge(&self, covered: u32, new: u32, old: u32) -> (u32, u32) {
-        let pass = covered & mask(self.passes(new, old));
+    fn merge(&self, uncovered: u32, new: u32, old: u32) -> (u32, u32) {
+        let pass = !uncovered & mask(self.passes(new, old));
         (select(pass, new, old), pass)
     }
 }
@@ -392,11 +392,11 @@ impl Compare for Less {
         new < old
     }
 
-    /// `min(new | !covered, old)`: an uncovered lane offers the largest key, which never wins; a
+    /// `min(new | uncovered, old)`: an uncovered lane offers the largest key, which never wins; a
     /// fragment passed exactly where the value changed.
     #[inline(always)]
-    fn merge(&self, covered: u32, new: u32, old: u32) -> (u32, u32) {
-        let merged = (new | !covered).min(old);
+    fn merge(&self, uncovered: u32, new: u32, old: u32) -> (u32, u32) {
+        let merged = (new | uncovered).min(old);
         (merged, mask(merged != old))
     }
 }
@@ -439,12 +439,12 @@ fn select(pass: u32, new: u32, old: u32) -> u32 {
 
 impl<K: DepthKey, C: Compare> Sink for DepthSink<'_, K, C> {
     #[inline(always)]
-    fn row(&mut self, start: usize, covered: &Lanes<u32>, z: &Lanes<f64>, _triangle: u32) -> u64 {
+    fn row(&mut self, start: usize, uncovered: &Lanes<u32>, z: &Lanes<f64>, _triangle: u32) -> u64 {
         let keys = lanes(self.keys, start);
         let mut passed = 0;
         for k in 0..BLOCK {
             let key = K::encode(z[k]);
-            let (merged, pass) = self.compare.merge(covered[k], key, keys[k]);
+            let (merged, pass) = self.compare.merge(uncovered[k], key, keys[k]);
             keys[k] = merged;
             passed += pass & 1;
         }
@@ -461,15 +461,15 @@ struct PairSink<'a, K> {
 
 impl<K: DepthKey> Sink for PairSink<'_, K> {
     #[inline(always)]
-    fn row(&mut self, start: usize, covered: &Lanes<u32>, z: &Lanes<f64>, _triangle: u32) -> u64 {
+    fn row(&mut self, start: usize, uncovered: &Lanes<u32>, z: &Lanes<f64>, _triangle: u32) -> u64 {
         let nearest = lanes(self.nearest, start);
         let second = lanes(self.second, start);
         let mut passed = 0;
         for k in 0..BLOCK {
             let key = K::encode(z[k]);
             let (near, next) = (nearest[k], second[k]);
-            let nearer = covered[k] & mask(key < near);
-            let between = covered[k] & !nearer & mask(key < next);
+            let nearer = !uncovered[k] & mask(key < near);
+            let between = !uncovered[k] & !nearer & mask(key < next);
             nearest[k] = select(nearer, key, near);
             second[k] = select(nearer, near, select(between, key, next));
             passed += u64::from((nearer | between) & 1);
@@ -488,13 +488,13 @@ struct EyeSink<'a, K, C> {
 
 impl<K: DepthKey, C: Compare> Sink for EyeSink<'_, K, C> {
     #[inline(always)]
-    fn row(&mut self, start: usize, covered: &Lanes<u32>, z: &Lanes<f64>, triangle: u32) -> u64 {
+    fn row(&mut self, start: usize, uncovered: &Lanes<u32>, z: &Lanes<f64>, triangle: u32) -> u64 {
         let keys = lanes(self.keys, start);
         let ids = lanes(self.triangles, start);
         let mut passed = 0;
         for k in 0..BLOCK {
             let key = K::encode(z[k]);
-            let (merged, pass) = self.compare.merge(covered[k], key, keys[k]);
+            let (merged, pass) = self.compare.merge(uncovered[k], key, keys[k]);
             keys[k] = merged;
             ids[k] = select(pass, triangle, ids[k]);
             passed += u64::from(pass & 1);
