@@ -21,6 +21,48 @@ pub(crate) enum Command {
     Params(ParamsArgs),
     /// Write the closed-form figures (CSV, SVG, PNG): the papers' plots and the ones they lack.
     Curves(CurvesArgs),
+    /// Rasterize a mesh in the benchmark's light and eye views and write the depth images (PNG and
+    /// EXR), for comparison with any other renderer.
+    RenderMesh(RenderMeshArgs),
+}
+
+/// Arguments of `shadowlab render-mesh`.
+#[derive(Debug, Args)]
+pub(crate) struct RenderMeshArgs {
+    /// The mesh, a Wavefront OBJ file.
+    pub(crate) mesh: PathBuf,
+    /// Only the light pass (orthographic, size × size).
+    #[arg(long, conflicts_with = "eye")]
+    pub(crate) light: bool,
+    /// Only the eye pass (perspective, --eye-size).
+    #[arg(long)]
+    pub(crate) eye: bool,
+    /// Side of the light pass's square target, in pixels.
+    #[arg(long, default_value_t = 2048, value_parser = clap::value_parser!(u32).range(1..=16384))]
+    pub(crate) size: u32,
+    /// Size of the eye pass's target, WIDTHxHEIGHT.
+    #[arg(long, default_value = "1024x768", value_parser = parse_size)]
+    pub(crate) eye_size: (u32, u32),
+    /// Round positions and matrices to f32 first, as a GPU's vertex buffers and uniforms hold them
+    /// (the rasterizer still works in f64 from there); for pixel comparisons with GL renderers.
+    #[arg(long)]
+    pub(crate) f32_inputs: bool,
+    /// Directory to write into (created if missing): MESH-light.{png,exr}, MESH-eye.{png,exr}.
+    #[arg(long, default_value = "out/render")]
+    pub(crate) out: PathBuf,
+}
+
+fn parse_size(text: &str) -> Result<(u32, u32), String> {
+    let (w, h) = text
+        .split_once('x')
+        .ok_or("expected WIDTHxHEIGHT, e.g. 1024x768")?;
+    let side = |s: &str| {
+        s.parse::<u32>()
+            .ok()
+            .filter(|v| (1..=16384).contains(v))
+            .ok_or_else(|| format!("{s:?} is not a size between 1 and 16384"))
+    };
+    Ok((side(w)?, side(h)?))
 }
 
 /// Arguments of `shadowlab params`.

@@ -10,6 +10,7 @@ mod curves_command;
 mod error;
 mod output;
 mod params_command;
+mod render_mesh_command;
 
 use std::process::ExitCode;
 
@@ -26,6 +27,7 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Params(args) => params_command::run(&args),
         Command::Curves(args) => curves_command::run(&args),
+        Command::RenderMesh(args) => render_mesh_command::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

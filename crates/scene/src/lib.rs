@@ -40,6 +40,7 @@
 
 #![deny(missing_docs)]
 
+pub mod benchmark;
 mod bounds;
 mod error;
 mod mesh;
