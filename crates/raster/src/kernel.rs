@@ -21,6 +21,9 @@ pub(crate) trait Sink {
     /// has window depth `z[k]`. Returns how many covered fragments passed (were stored). Uncovered
     /// lanes must be left as they are.
     fn row(&mut self, start: usize, uncovered: &Lanes<u32>, z: &Lanes<f64>, triangle: u32) -> u64;
+
+    /// One covered pixel at tile index `index` with window depth `z`; returns 1 if it passed.
+    fn fragment(&mut self, index: usize, z: f64, triangle: u32) -> u64;
 }
 
 /// Eight lanes: one row of a block.
@@ -41,6 +44,10 @@ pub(crate) struct TileRect {
     pub(crate) width: i64,
     pub(crate) height: i64,
 }
+
+/// Pixel boxes of at most this many pixels (within the tile) are tested pixel by pixel: cheaper than
+/// setting up a block for the one or two centres a tiny triangle can cover.
+const SMALL: i64 = 4;
 
 /// Block side, in pixels: the lanes of one row.
 pub(crate) const BLOCK: usize = 8;
@@ -72,12 +79,16 @@ fn step(s: i64) -> i32 {
 /// is outside the triangle's box; zero where the centre is covered.
 #[inline(always)]
 fn row_uncovered(edges: [i32; 3], lanes: &[Lanes<i32>; 3], outside: &Lanes<u32>) -> Lanes<u32> {
-    std::array::from_fn(|k| {
+    // Plain indexed loops over fixed-size arrays: LLVM turns these into single vector
+    // instructions, which it does not reliably do for `array::map` or `from_fn`.
+    let mut uncovered = [0u32; BLOCK];
+    for k in 0..BLOCK {
         let v = (edges[0] + lanes[0][k]) | (edges[1] + lanes[1][k]) | (edges[2] + lanes[2][k]);
         #[expect(clippy::cast_sign_loss, reason = "the sign, spread to every bit")]
         let sign = (v >> 31) as u32;
-        sign | outside[k]
-    })
+        uncovered[k] = sign | outside[k];
+    }
+    uncovered
 }
 
 /// Sends the fragments of a set-up triangle that fall in `tile` (within the triangle's pixel box) to
@@ -98,8 +109,36 @@ pub(crate) fn rasterize<S: Sink>(
         return 0;
     }
     let edges = setup.edges;
-    let lanes = edges.map(|e| COLUMNS.map(|k| k * step(e.step_i)));
-    let row_steps = edges.map(|e| step(e.step_j));
+    if (i1 - i0 + 1) * (j1 - j0 + 1) <= SMALL {
+        let mut passed = 0;
+        for j in j0..=j1 {
+            for i in i0..=i1 {
+                if (edges[0].at(i, j) | edges[1].at(i, j) | edges[2].at(i, j)) >= 0 {
+                    #[expect(
+                        clippy::cast_sign_loss,
+                        clippy::cast_possible_truncation,
+                        reason = "the pixel lies inside the tile"
+                    )]
+                    let index = ((j - tile.y0) as usize) * TILE_SIZE + (i - tile.x0) as usize;
+                    let z = setup.row_depth(j) + setup.column_depth(i);
+                    passed += sink.fragment(index, z, triangle);
+                }
+            }
+        }
+        return passed;
+    }
+    let mut lanes = [[0i32; BLOCK]; 3];
+    for (lane, edge) in lanes.iter_mut().zip(&edges) {
+        let per_column = step(edge.step_i);
+        for k in 0..BLOCK {
+            lane[k] = COLUMNS[k] * per_column;
+        }
+    }
+    let row_steps = [
+        step(edges[0].step_j),
+        step(edges[1].step_j),
+        step(edges[2].step_j),
+    ];
     let mut passed = 0;
     let mut bj = j0;
     // Blocks are aligned to the tile's 8-column grid, so each block row is one aligned run of
@@ -109,13 +148,28 @@ pub(crate) fn rasterize<S: Sink>(
         let rows = (j1 - bj + 1).min(BLOCK_I64);
         let mut bi = first_block_column;
         while bi <= i1 {
-            let outside = COLUMNS.map(|k| {
-                let i = bi + i64::from(k);
-                if i0 <= i && i <= i1 { 0 } else { u32::MAX }
-            });
-            let mut corners = edges.map(|e| corner(e.at(bi, bj)));
+            // Lanes outside the box's columns [i0, i1]: k − (i0 − bi) or (i1 − bi) − k is negative.
+            #[expect(
+                clippy::cast_possible_truncation,
+                reason = "clamped to a block's width"
+            )]
+            let (lo, hi) = (
+                (i0 - bi).clamp(-1, BLOCK_I64) as i32,
+                (i1 - bi).clamp(-1, BLOCK_I64) as i32,
+            );
+            let mut outside = [0u32; BLOCK];
+            for k in 0..BLOCK {
+                #[expect(clippy::cast_sign_loss, reason = "the sign, spread to every bit")]
+                let sign = (((COLUMNS[k] - lo) | (hi - COLUMNS[k])) >> 31) as u32;
+                outside[k] = sign;
+            }
+            let mut corners = [
+                corner(edges[0].at(bi, bj)),
+                corner(edges[1].at(bi, bj)),
+                corner(edges[2].at(bi, bj)),
+            ];
             // The column part of the depth, once per block; the row part once per row.
-            let column_z = COLUMNS.map(|k| setup.column_depth(bi + i64::from(k)));
+            let column_z = setup.column_depths(bi);
             #[expect(
                 clippy::cast_sign_loss,
                 clippy::cast_possible_truncation,
@@ -125,10 +179,13 @@ pub(crate) fn rasterize<S: Sink>(
             for r in 0..rows {
                 let uncovered = row_uncovered(corners, &lanes, &outside);
                 let row_z = setup.row_depth(bj + r);
-                let z = column_z.map(|cz| row_z + cz);
+                let mut z = [0.0; BLOCK];
+                for k in 0..BLOCK {
+                    z[k] = row_z + column_z[k];
+                }
                 passed += sink.row(start, &uncovered, &z, triangle);
-                for (corner, step) in corners.iter_mut().zip(row_steps) {
-                    *corner += step;
+                for k in 0..3 {
+                    corners[k] += row_steps[k];
                 }
                 start += TILE_SIZE;
             }

@@ -512,18 +512,21 @@ impl<F: FnMut(Fragment)> Sink for CallbackSink<'_, F> {
     fn row(&mut self, start: usize, uncovered: &Lanes<u32>, z: &Lanes<f64>, triangle: u32) -> u64 {
         let mut count = 0;
         for k in (0..BLOCK).filter(|&k| uncovered[k] == 0) {
-            let index = start + k;
-            #[expect(clippy::cast_possible_truncation, reason = "index < TILE_PIXELS")]
-            let (dx, dy) = ((index % TILE_SIZE) as u32, (index / TILE_SIZE) as u32);
-            let depth = z[k].clamp(0.0, 1.0);
-            (self.f)(Fragment {
-                x: self.x0 + dx,
-                y: self.y0 + dy,
-                depth,
-                triangle,
-            });
-            count += 1;
+            count += self.fragment(start + k, z[k], triangle);
         }
         count
+    }
+
+    fn fragment(&mut self, index: usize, z: f64, triangle: u32) -> u64 {
+        #[expect(clippy::cast_possible_truncation, reason = "index < TILE_PIXELS")]
+        let (dx, dy) = ((index % TILE_SIZE) as u32, (index / TILE_SIZE) as u32);
+        let depth = z.clamp(0.0, 1.0);
+        (self.f)(Fragment {
+            x: self.x0 + dx,
+            y: self.y0 + dy,
+            depth,
+            triangle,
+        });
+        1
     }
 }

@@ -450,6 +450,15 @@ impl<K: DepthKey, C: Compare> Sink for DepthSink<'_, K, C> {
         }
         u64::from(passed)
     }
+
+    #[inline(always)]
+    fn fragment(&mut self, index: usize, z: f64, _triangle: u32) -> u64 {
+        let key = K::encode(z);
+        let old = &mut self.keys[index];
+        let (merged, pass) = self.compare.merge(0, key, *old);
+        *old = merged;
+        u64::from(pass & 1)
+    }
 }
 
 /// Keeps the two nearest keys.
@@ -476,6 +485,22 @@ impl<K: DepthKey> Sink for PairSink<'_, K> {
         }
         passed
     }
+
+    #[inline(always)]
+    fn fragment(&mut self, index: usize, z: f64, _triangle: u32) -> u64 {
+        let key = K::encode(z);
+        let (near, next) = (self.nearest[index], self.second[index]);
+        if key < near {
+            self.second[index] = near;
+            self.nearest[index] = key;
+            1
+        } else if key < next {
+            self.second[index] = key;
+            1
+        } else {
+            0
+        }
+    }
 }
 
 /// Writes depth keys and triangle ids through the depth test.
@@ -500,5 +525,14 @@ impl<K: DepthKey, C: Compare> Sink for EyeSink<'_, K, C> {
             passed += u64::from(pass & 1);
         }
         passed
+    }
+
+    #[inline(always)]
+    fn fragment(&mut self, index: usize, z: f64, triangle: u32) -> u64 {
+        let key = K::encode(z);
+        let (merged, pass) = self.compare.merge(0, key, self.keys[index]);
+        self.keys[index] = merged;
+        self.triangles[index] = select(pass, triangle, self.triangles[index]);
+        u64::from(pass & 1)
     }
 }

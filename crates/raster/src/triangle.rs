@@ -161,8 +161,25 @@ impl Setup {
         self.origin_z + self.dz_dy * (j * SUBPIXELS + HALF_PIXEL - self.origin_y) as f64
     }
 
-    /// The part that depends on the column: `dz_dx·x_offset(i)`. A pixel's depth is
-    /// `row_depth(j) + column_depth(i)`, so it depends on the triangle alone, never on the tile.
+    /// The part of the depth that depends on the column, `dz_dx·x_offset`, for the eight columns
+    /// from `i`, `x_offset` being the exact grid distance from the reference vertex to the column's
+    /// centres. A pixel's depth is `row_depth(j) + column_depths(..)[k]`, which depends on the
+    /// triangle alone, never on the tile. The offsets of the eight columns are formed by adding
+    /// multiples of `SUBPIXELS` to the first in f64, which is exact (integers below 2^53), so they
+    /// are the same numbers however a row is split into blocks.
+    #[inline(always)]
+    pub(crate) fn column_depths(&self, i: i64) -> [f64; 8] {
+        const STEPS: [f64; 8] = [0.0, 256.0, 512.0, 768.0, 1024.0, 1280.0, 1536.0, 1792.0];
+        let first = (i * SUBPIXELS + HALF_PIXEL - self.origin_x) as f64;
+        let mut depths = [0.0; 8];
+        for k in 0..8 {
+            depths[k] = self.dz_dx * (first + STEPS[k]);
+        }
+        depths
+    }
+
+    /// The column part of the depth of column `i` alone: the same number as its lane in
+    /// [`Self::column_depths`] (the same product of the same exact offset).
     #[inline(always)]
     pub(crate) fn column_depth(&self, i: i64) -> f64 {
         self.dz_dx * (i * SUBPIXELS + HALF_PIXEL - self.origin_x) as f64

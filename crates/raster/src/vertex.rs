@@ -4,7 +4,7 @@
 //! Clip space is GL's: a point is inside when `−w ≤ z ≤ w` (near and far planes) and, for x and y,
 //! inside the guard band `|x| ≤ g_x·w`, `|y| ≤ g_y·w` with `g = 1 + 2·GUARD_BAND/size`. Window
 //! coordinates are `x_w = (x/w)·W/2 + W/2`, `y_w = (y/w)·H/2 + H/2` (y up, GL) and depth
-//! `z_w = (z/w)/2 + 1/2`.
+//! `z_w = (z/w)/2 + 1/2`, the quotients formed as products with `1/w`.
 
 use glam::{DMat4, DVec3, DVec4};
 
@@ -96,9 +96,13 @@ impl Viewport {
 
     /// The window vertex of a clip-space point inside the clip volume (`w > 0`).
     pub(crate) fn window_vertex(&self, c: DVec4) -> WindowVertex {
-        let x = (c.x / c.w) * self.half_width + self.half_width;
-        let y = (c.y / c.w) * self.half_height + self.half_height;
-        let z = ((c.z / c.w) * 0.5 + 0.5).clamp(0.0, 1.0);
+        // One division and three products instead of three divisions: each coordinate is then
+        // within an ulp of the correctly rounded quotient (1e-13 pixel), far below the 1/256-pixel
+        // grid it is snapped to, and it is the same on every machine.
+        let inverse_w = 1.0 / c.w;
+        let x = (c.x * inverse_w) * self.half_width + self.half_width;
+        let y = (c.y * inverse_w) * self.half_height + self.half_height;
+        let z = ((c.z * inverse_w) * 0.5 + 0.5).clamp(0.0, 1.0);
         WindowVertex {
             x: snap(x),
             y: snap(y),
