@@ -47,6 +47,10 @@ pub(crate) struct RenderMeshArgs {
     /// (the rasterizer still works in f64 from there); for pixel comparisons with GL renderers.
     #[arg(long)]
     pub(crate) f32_inputs: bool,
+    /// Also write each depth image as a NumPy .npy file (f32, row 0 at the bottom, as GL reads it
+    /// back), for pixel comparisons with other renderers (e.g. the peer harness's --dump).
+    #[arg(long)]
+    pub(crate) npy: bool,
     /// Directory to write into (created if missing): MESH-light.{png,exr}, MESH-eye.{png,exr}.
     #[arg(long, default_value = "out/render")]
     pub(crate) out: PathBuf,

@@ -57,6 +57,12 @@ pub(crate) fn run(args: &RenderMeshArgs) -> Result<(), CliError> {
             format!("{stem}-{name}.png"),
             image_out::depth_png16(&depths, width, height).map_err(failure)?,
         ));
+        if args.npy {
+            files.push((
+                format!("{stem}-{name}.npy"),
+                image_out::depth_npy(&depths, width, height).map_err(failure)?,
+            ));
+        }
         print_line(&format!(
             "{name}: {width}x{height}, {} triangles ({} drawn, {} clipped, {} empty, {} degenerate), {} fragments, {:.2} ms",
             stats.triangles,

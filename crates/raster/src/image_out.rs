@@ -6,6 +6,8 @@
 //! * [`depth_exr`]: window depth as one f32 channel `Z` — exactly what an f32 target stores.
 //! * [`depth_png16`]: a 16-bit greyscale preview, `round(z·65535)`, far = white.
 //! * [`rgb_png`]: 8-bit colour.
+//! * [`depth_npy`]: the depths as a NumPy array of f32, **row 0 at the bottom** (the one exception,
+//!   so that it lines up with `glReadPixels` dumps).
 
 use std::io::Cursor;
 
@@ -84,6 +86,29 @@ pub fn rgb_png(pixels: &[[u8; 3]], width: u32, height: u32) -> Result<Vec<u8>, R
     encode_png(&image::DynamicImage::ImageRgb8(image))
 }
 
+/// Window depths as a NumPy `.npy` file (version 1.0, little-endian f32, shape `(height, width)`,
+/// row 0 at the bottom as GL reads pixels back).
+pub fn depth_npy(depths: &[f64], width: u32, height: u32) -> Result<Vec<u8>, RasterError> {
+    check_len(depths.len(), width, height, 1)?;
+    let mut header =
+        format!("{{'descr': '<f4', 'fortran_order': False, 'shape': ({height}, {width}), }}");
+    // Pad so that the data starts on a multiple of 64 bytes, ending the header with a newline.
+    while (10 + header.len() + 1) % 64 != 0 {
+        header.push(' ');
+    }
+    header.push('\n');
+    let length = u16::try_from(header.len()).map_err(|e| RasterError::Encode(e.to_string()))?;
+    let mut bytes = Vec::with_capacity(10 + header.len() + 4 * depths.len());
+    bytes.extend_from_slice(b"\x93NUMPY\x01\x00");
+    bytes.extend_from_slice(&length.to_le_bytes());
+    bytes.extend_from_slice(header.as_bytes());
+    for &z in depths {
+        #[expect(clippy::cast_possible_truncation, reason = "the file holds f32")]
+        bytes.extend_from_slice(&(z as f32).to_le_bytes());
+    }
+    Ok(bytes)
+}
+
 fn encode_png(image: &image::DynamicImage) -> Result<Vec<u8>, RasterError> {
     let mut bytes = Cursor::new(Vec::new());
     image
@@ -106,6 +131,22 @@ mod tests {
         assert!(depth_png16(&depths, 4, 2).is_err());
         let rgb = rgb_png(&[[255, 0, 0]; 6], 2, 3).unwrap();
         assert_eq!(&rgb[..4], b"\x89PNG");
+    }
+
+    #[test]
+    fn npy_has_a_valid_header_and_bottom_row_first() {
+        let npy = depth_npy(&[0.0, 0.5, 1.0, 0.25, 0.75, 0.125], 3, 2).unwrap();
+        assert_eq!(&npy[..8], b"\x93NUMPY\x01\x00");
+        let header_len = usize::from(u16::from_le_bytes([npy[8], npy[9]]));
+        assert_eq!((10 + header_len) % 64, 0);
+        let header = std::str::from_utf8(&npy[10..10 + header_len]).unwrap();
+        assert!(
+            header.contains("'shape': (2, 3)") && header.ends_with('\n'),
+            "{header}"
+        );
+        let first = f32::from_le_bytes(npy[10 + header_len..14 + header_len].try_into().unwrap());
+        assert_eq!(first, 0.0);
+        assert_eq!(npy.len(), 10 + header_len + 6 * 4);
     }
 
     #[test]

@@ -274,6 +274,7 @@ impl Rasterizer {
             .par_chunks(VERTEX_CHUNK)
             .zip(self.window.par_chunks_mut(VERTEX_CHUNK))
             .zip(self.codes.par_chunks_mut(VERTEX_CHUNK))
+            .with_max_len(1)
             .for_each(|((positions, window), codes)| {
                 for ((p, w), c) in positions.iter().zip(window).zip(codes) {
                     let clip = transform(m, *p);
@@ -288,6 +289,7 @@ impl Rasterizer {
         let chunks: Vec<ChunkBins> = mesh
             .triangles
             .par_chunks(TRIANGLE_CHUNK)
+            .with_max_len(1)
             .enumerate()
             .map(|(c, triangles)| {
                 let first = c * TRIANGLE_CHUNK;

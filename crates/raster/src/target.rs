@@ -14,6 +14,9 @@ pub(crate) const TILE_SHIFT: u32 = 6;
 /// Pixels per tile.
 pub(crate) const TILE_PIXELS: usize = TILE_SIZE * TILE_SIZE;
 
+/// Tiles cleared per parallel job.
+const CLEAR_TILES_PER_JOB: usize = 64;
+
 /// The triangle id stored where no triangle covers a pixel.
 pub const NO_TRIANGLE: u32 = u32::MAX;
 
@@ -159,6 +162,10 @@ impl DepthTarget {
         use rayon::prelude::*;
         self.keys
             .par_chunks_mut(TILE_PIXELS)
+            // One tile per job: tiles differ wildly in cost (most are empty), and rayon's adaptive
+            // splitting alone leaves one thread with most of the work when the caller is itself a
+            // pool thread (its job never counts as stolen, so it is split less).
+            .with_max_len(1)
             .enumerate()
             .map(|(t, keys)| {
                 // The common test gets its own loop, without a per-fragment branch.
@@ -255,6 +262,7 @@ impl DepthPairTarget {
         self.nearest
             .par_chunks_mut(TILE_PIXELS)
             .zip(self.second.par_chunks_mut(TILE_PIXELS))
+            .with_max_len(1)
             .enumerate()
             .map(|(t, (nearest, second))| {
                 let mut sink = PairSink::<K> {
@@ -339,6 +347,7 @@ impl EyeTarget {
         self.keys
             .par_chunks_mut(TILE_PIXELS)
             .zip(self.triangles.par_chunks_mut(TILE_PIXELS))
+            .with_max_len(1)
             .enumerate()
             .map(|(t, (keys, triangles))| {
                 if compare == DepthCompare::Less {
@@ -365,8 +374,11 @@ impl EyeTarget {
 
 fn fill(values: &mut [u32], value: u32) {
     use rayon::prelude::*;
+    // Equal work per tile: 64 tiles (1 MiB) per job keeps the job overhead negligible and still
+    // splits a 2048² target into 16 jobs, whoever calls.
     values
         .par_chunks_mut(TILE_PIXELS)
+        .with_max_len(CLEAR_TILES_PER_JOB)
         .for_each(|tile| tile.fill(value));
 }
 
