@@ -11,13 +11,13 @@
 //! are the span between the mask's lowest and highest bit.
 
 use crate::fixed::SUBPIXEL_BITS;
-use crate::target::TILE_SIZE;
+use crate::target::TILE_STRIDE;
 use crate::triangle::{PixelBox, Setup};
 
 /// Receives the fragments of one tile, eight pixels of a row at a time.
 pub(crate) trait Sink {
-    /// The eight pixels at tile indices `start..start + 8` (`start` a multiple of 8, within one row
-    /// of the tile): lane k is *not* covered when `uncovered[k]` is all ones (covered when zero), and
+    /// The eight pixels at tile indices `start..start + 8` (within one row of the tile's storage,
+    /// padding included): lane k is *not* covered when `uncovered[k]` is all ones (covered when zero), and
     /// has window depth `z[k]`. Returns how many covered fragments passed (were stored). Uncovered
     /// lanes must be left as they are.
     fn row(&mut self, start: usize, uncovered: &Lanes<u32>, z: &Lanes<f64>, triangle: u32) -> u64;
@@ -119,7 +119,7 @@ pub(crate) fn rasterize<S: Sink>(
                         clippy::cast_possible_truncation,
                         reason = "the pixel lies inside the tile"
                     )]
-                    let index = ((j - tile.y0) as usize) * TILE_SIZE + (i - tile.x0) as usize;
+                    let index = ((j - tile.y0) as usize) * TILE_STRIDE + (i - tile.x0) as usize;
                     let z = setup.row_depth(j) + setup.column_depth(i);
                     passed += sink.fragment(index, z, triangle);
                 }
@@ -141,9 +141,10 @@ pub(crate) fn rasterize<S: Sink>(
     ];
     let mut passed = 0;
     let mut bj = j0;
-    // Blocks are aligned to the tile's 8-column grid, so each block row is one aligned run of
-    // eight pixels in the tile's storage; lanes outside the triangle's box are masked off.
-    let first_block_column = tile.x0 + ((i0 - tile.x0) & !(BLOCK_I64 - 1));
+    // Blocks start at the box's first column: a triangle up to eight pixels wide takes one block
+    // per eight rows. The tile rows' padding keeps every block row inside its tile row; lanes
+    // outside the triangle's box are masked off.
+    let first_block_column = i0;
     while bj <= j1 {
         let rows = (j1 - bj + 1).min(BLOCK_I64);
         let mut bi = first_block_column;
@@ -175,7 +176,7 @@ pub(crate) fn rasterize<S: Sink>(
                 clippy::cast_possible_truncation,
                 reason = "the block lies inside the tile"
             )]
-            let mut start = ((bj - tile.y0) as usize) * TILE_SIZE + (bi - tile.x0) as usize;
+            let mut start = ((bj - tile.y0) as usize) * TILE_STRIDE + (bi - tile.x0) as usize;
             for r in 0..rows {
                 let uncovered = row_uncovered(corners, &lanes, &outside);
                 let row_z = setup.row_depth(bj + r);
@@ -187,7 +188,7 @@ pub(crate) fn rasterize<S: Sink>(
                 for k in 0..3 {
                     corners[k] += row_steps[k];
                 }
-                start += TILE_SIZE;
+                start += TILE_STRIDE;
             }
             bi += BLOCK_I64;
         }

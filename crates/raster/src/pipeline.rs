@@ -20,7 +20,7 @@ use crate::clip::{ClippedTriangle, clip_triangle};
 use crate::depth::{DepthCompare, DepthFormat, F32Key, ReversedF32Key, Unorm16Key, Unorm24Key};
 use crate::error::RasterError;
 use crate::kernel::{BLOCK, Lanes, Sink, TileKernel, TileRect, rasterize};
-use crate::target::{DepthPairTarget, DepthTarget, EyeTarget, TILE_SHIFT, TILE_SIZE, TargetSize};
+use crate::target::{DepthPairTarget, DepthTarget, EyeTarget, TILE_SHIFT, TILE_STRIDE, TargetSize};
 use crate::triangle::{CullMode, Setup, Verdict, classify};
 use crate::vertex::{Viewport, WindowVertex, code, transform};
 
@@ -389,7 +389,7 @@ fn bin_chunk(
                 Verdict::Degenerate => stats.degenerate += 1,
                 Verdict::Culled => stats.culled += 1,
                 Verdict::Empty => stats.empty += 1,
-                Verdict::Draw(bounds) => {
+                Verdict::Draw(bounds, _) => {
                     stats.drawn += 1;
                     list_tiles(&bounds, entry, size, &mut listed);
                 }
@@ -406,7 +406,7 @@ fn bin_chunk(
             let before = pieces.len();
             clip_triangle(clip, ca | cb | cc, entry, viewport, &mut pieces);
             for (p, piece) in pieces.iter().enumerate().skip(before) {
-                if let Verdict::Draw(bounds) = classify(&piece.vertices, cull, width, height) {
+                if let Verdict::Draw(bounds, _) = classify(&piece.vertices, cull, width, height) {
                     stats.clipped_pieces += 1;
                     #[expect(clippy::cast_possible_truncation, reason = "pieces per chunk < 2^31")]
                     let piece_entry = CLIPPED | p as u32;
@@ -482,8 +482,8 @@ impl TileKernel for Binned<'_> {
                     let piece = &chunk.pieces[(entry & !CLIPPED) as usize];
                     (piece.vertices, piece.triangle)
                 };
-                if let Verdict::Draw(bounds) = classify(&vertices, self.cull, w, h) {
-                    let setup = Setup::new(&vertices);
+                if let Verdict::Draw(bounds, area) = classify(&vertices, self.cull, w, h) {
+                    let setup = Setup::new(&vertices, area);
                     passed += rasterize(&setup, &bounds, &rect, triangle, sink);
                 }
             }
@@ -521,7 +521,7 @@ impl<F: FnMut(Fragment)> Sink for CallbackSink<'_, F> {
 
     fn fragment(&mut self, index: usize, z: f64, triangle: u32) -> u64 {
         #[expect(clippy::cast_possible_truncation, reason = "index < TILE_PIXELS")]
-        let (dx, dy) = ((index % TILE_SIZE) as u32, (index / TILE_SIZE) as u32);
+        let (dx, dy) = ((index % TILE_STRIDE) as u32, (index / TILE_STRIDE) as u32);
         let depth = z.clamp(0.0, 1.0);
         (self.f)(Fragment {
             x: self.x0 + dx,

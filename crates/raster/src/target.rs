@@ -11,8 +11,11 @@ use crate::kernel::{BLOCK, Lanes, Sink, TileKernel};
 pub(crate) const TILE_SIZE: usize = 1 << TILE_SHIFT;
 /// log2 of the tile side.
 pub(crate) const TILE_SHIFT: u32 = 6;
-/// Pixels per tile.
-pub(crate) const TILE_PIXELS: usize = TILE_SIZE * TILE_SIZE;
+/// Stored values per tile row: the tile's 64 pixels and 8 of padding, so that a run of eight
+/// pixels starting at any column of the tile stays inside its row (the padding is never covered).
+pub(crate) const TILE_STRIDE: usize = TILE_SIZE + 8;
+/// Stored values per tile.
+pub(crate) const TILE_PIXELS: usize = TILE_STRIDE * TILE_SIZE;
 
 /// Tiles cleared per parallel job.
 const CLEAR_TILES_PER_JOB: usize = 64;
@@ -85,13 +88,13 @@ impl TargetSize {
         self.width as usize * self.height as usize
     }
 
-    /// Converts tiled storage to a row-major image (row 0 at the bottom).
+    /// Converts tiled storage to a row-major image (row 0 at the bottom), leaving out the padding.
     fn untile<T: Copy + Default>(&self, tiled: &[T]) -> Vec<T> {
         let (w, h) = (self.width as usize, self.height as usize);
         let mut out = vec![T::default(); self.pixel_count()];
         for (y, row) in out.chunks_mut(w).enumerate().take(h) {
             let ty = y / TILE_SIZE;
-            let in_tile_row = (y % TILE_SIZE) * TILE_SIZE;
+            let in_tile_row = (y % TILE_SIZE) * TILE_STRIDE;
             for (tx, span) in row.chunks_mut(TILE_SIZE).enumerate() {
                 let start = (ty * self.tiles_x + tx) * TILE_PIXELS + in_tile_row;
                 span.copy_from_slice(&tiled[start..start + span.len()]);

@@ -36,8 +36,9 @@ pub(crate) enum Verdict {
     Culled,
     /// Its bounding box holds no pixel centre of the target.
     Empty,
-    /// To be rasterized over the given pixel bounding box (inclusive).
-    Draw(PixelBox),
+    /// To be rasterized over the given pixel bounding box (inclusive); with twice its signed area in
+    /// grid units², which [`Setup::new`] takes instead of computing it again.
+    Draw(PixelBox, i64),
 }
 
 /// An inclusive rectangle of pixel indices.
@@ -80,7 +81,7 @@ pub(crate) fn classify(v: &[WindowVertex; 3], cull: CullMode, width: i64, height
     if b.min_i > b.max_i || b.min_j > b.max_j {
         Verdict::Empty
     } else {
-        Verdict::Draw(b)
+        Verdict::Draw(b, area)
     }
 }
 
@@ -131,10 +132,10 @@ pub(crate) struct Setup {
 }
 
 impl Setup {
-    /// The setup of a triangle [`classify`] accepted (non-zero area).
+    /// The setup of a triangle [`classify`] accepted, given the doubled area it found (non-zero).
     #[inline]
-    pub(crate) fn new(v: &[WindowVertex; 3]) -> Self {
-        let area = doubled_area(v);
+    pub(crate) fn new(v: &[WindowVertex; 3], area: i64) -> Self {
+        debug_assert_eq!(area, doubled_area(v));
         debug_assert_ne!(area, 0);
         let [a, b, c] = if area > 0 { *v } else { [v[0], v[2], v[1]] };
         let area = area.abs() as f64;
