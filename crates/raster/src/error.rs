@@ -29,7 +29,8 @@ pub enum RasterError {
     },
     /// A matrix entry is NaN or infinite.
     NonFiniteMatrix,
-    /// A mesh has more triangles than the rasterizer can number (`u32::MAX − 1`, ids being u32).
+    /// A mesh has more triangles than the rasterizer can number (`2^30`, the top two bits of a bin
+    /// entry marking its kind).
     TooManyTriangles {
         /// The count given.
         count: usize,

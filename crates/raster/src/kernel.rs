@@ -10,9 +10,13 @@
 //! pixel. The covered columns of a row of a convex triangle are contiguous, so the row's fragments
 //! are the span between the mask's lowest and highest bit.
 
+use std::ops::RangeInclusive;
+
+use wide::i32x8;
+
 use crate::fixed::SUBPIXEL_BITS;
 use crate::target::TILE_STRIDE;
-use crate::triangle::{PixelBox, Setup};
+use crate::triangle::{DepthPlane, Edge, PixelBox, Setup};
 
 /// Receives the fragments of one tile, eight pixels of a row at a time.
 pub(crate) trait Sink {
@@ -49,12 +53,15 @@ pub(crate) struct TileRect {
 /// setting up a block for the one or two centres a tiny triangle can cover.
 const SMALL: i64 = 4;
 
+/// The most pixels a box given to [`small_box_coverage`] may hold: one bit each in a `u32`.
+pub(crate) const MAX_SMALL_BOX: i64 = 32;
+
 /// Block side, in pixels: the lanes of one row.
 pub(crate) const BLOCK: usize = 8;
 /// [`BLOCK`] as a coordinate.
-const BLOCK_I64: i64 = 8;
+pub(crate) const BLOCK_I64: i64 = 8;
 /// The column offsets of the lanes.
-const COLUMNS: [i32; BLOCK] = [0, 1, 2, 3, 4, 5, 6, 7];
+const COLUMNS: i32x8 = i32x8::new([0, 1, 2, 3, 4, 5, 6, 7]);
 /// Beyond this magnitude, `E >> 8` keeps its sign across a block (at most 14 steps of < 2^24).
 const CLAMP: i64 = 1 << 30;
 
@@ -75,20 +82,68 @@ fn step(s: i64) -> i32 {
 }
 
 /// The coverage of one row of a block as lane masks, inverted: all ones where some edge value is
-/// negative (the OR of the three has its sign bit set, spread by an arithmetic shift) or the column
-/// is outside the triangle's box; zero where the centre is covered.
+/// negative (then so is the OR of the three) or the column is outside the triangle's box; zero
+/// where the centre is covered.
 #[inline(always)]
-fn row_uncovered(edges: [i32; 3], lanes: &[Lanes<i32>; 3], outside: &Lanes<u32>) -> Lanes<u32> {
-    // Plain indexed loops over fixed-size arrays: LLVM turns these into single vector
-    // instructions, which it does not reliably do for `array::map` or `from_fn`.
-    let mut uncovered = [0u32; BLOCK];
-    for k in 0..BLOCK {
-        let v = (edges[0] + lanes[0][k]) | (edges[1] + lanes[1][k]) | (edges[2] + lanes[2][k]);
-        #[expect(clippy::cast_sign_loss, reason = "the sign, spread to every bit")]
-        let sign = (v >> 31) as u32;
-        uncovered[k] = sign | outside[k];
+fn row_uncovered(values: &[i32x8; 3], outside: i32x8) -> Lanes<u32> {
+    let uncovered = (values[0] | values[1] | values[2]).is_negative() | outside;
+    wide::bytemuck::cast(uncovered)
+}
+
+/// The covered pixel centres of a box of at most [`BLOCK`] columns and [`MAX_SMALL_BOX`] pixels,
+/// `columns` × `rows`, as a bit mask: bit `r·w + c` for column `columns.start() + c` and row
+/// `rows.start() + r`, `w` being the box's width. The path for boxes where a block would test
+/// mostly empty lanes: one row of lanes per box row, as in a block, and the rows' sign masks packed
+/// into one word.
+#[inline(always)]
+pub(crate) fn small_box_coverage(
+    edges: &[Edge; 3],
+    columns: RangeInclusive<i64>,
+    rows: RangeInclusive<i64>,
+) -> u32 {
+    let (i0, j0) = (*columns.start(), *rows.start());
+    let width = columns.end() - i0 + 1;
+    debug_assert!(width <= BLOCK_I64 && width * (rows.end() - j0 + 1) <= MAX_SMALL_BOX);
+    let mut values =
+        edges.map(|e| i32x8::splat(corner(e.at(i0, j0))) + COLUMNS * i32x8::splat(step(e.step_i)));
+    let row_steps = edges.map(|e| i32x8::splat(step(e.step_j)));
+    let in_box = (1 << width) - 1;
+    let mut covered = 0;
+    let mut shift = 0;
+    for _ in rows {
+        let uncovered = (values[0] | values[1] | values[2]).to_bitmask();
+        covered |= (!uncovered & in_box) << shift;
+        shift += width;
+        for (value, row_step) in values.iter_mut().zip(row_steps) {
+            *value += row_step;
+        }
     }
-    uncovered
+    covered
+}
+
+/// Calls `f(i, j, z)` for each pixel of a [`small_box_coverage`] mask, row by row from the bottom,
+/// with the depth the block path gives the same pixel.
+#[inline(always)]
+pub(crate) fn for_each_in_mask(
+    mut covered: u32,
+    depth: &DepthPlane,
+    columns: RangeInclusive<i64>,
+    j0: i64,
+    mut f: impl FnMut(i64, i64, f64),
+) {
+    let i0 = *columns.start();
+    #[expect(
+        clippy::cast_sign_loss,
+        clippy::cast_possible_truncation,
+        reason = "a box width, at most BLOCK"
+    )]
+    let width = (columns.end() - i0 + 1) as u32;
+    while covered != 0 {
+        let bit = covered.trailing_zeros();
+        covered &= covered - 1;
+        let (i, j) = (i0 + i64::from(bit % width), j0 + i64::from(bit / width));
+        f(i, j, depth.row_depth(j) + depth.column_depth(i));
+    }
 }
 
 /// Sends the fragments of a set-up triangle that fall in `tile` (within the triangle's pixel box) to
@@ -111,34 +166,21 @@ pub(crate) fn rasterize<S: Sink>(
     let edges = setup.edges;
     if (i1 - i0 + 1) * (j1 - j0 + 1) <= SMALL {
         let mut passed = 0;
-        for j in j0..=j1 {
-            for i in i0..=i1 {
-                if (edges[0].at(i, j) | edges[1].at(i, j) | edges[2].at(i, j)) >= 0 {
-                    #[expect(
-                        clippy::cast_sign_loss,
-                        clippy::cast_possible_truncation,
-                        reason = "the pixel lies inside the tile"
-                    )]
-                    let index = ((j - tile.y0) as usize) * TILE_STRIDE + (i - tile.x0) as usize;
-                    let z = setup.row_depth(j) + setup.column_depth(i);
-                    passed += sink.fragment(index, z, triangle);
-                }
-            }
-        }
+        let covered = small_box_coverage(&edges, i0..=i1, j0..=j1);
+        for_each_in_mask(covered, &setup.depth, i0..=i1, j0, |i, j, z| {
+            #[expect(
+                clippy::cast_sign_loss,
+                clippy::cast_possible_truncation,
+                reason = "the pixel lies inside the tile"
+            )]
+            let index = ((j - tile.y0) as usize) * TILE_STRIDE + (i - tile.x0) as usize;
+            passed += sink.fragment(index, z, triangle);
+        });
         return passed;
     }
-    let mut lanes = [[0i32; BLOCK]; 3];
-    for (lane, edge) in lanes.iter_mut().zip(&edges) {
-        let per_column = step(edge.step_i);
-        for k in 0..BLOCK {
-            lane[k] = COLUMNS[k] * per_column;
-        }
-    }
-    let row_steps = [
-        step(edges[0].step_j),
-        step(edges[1].step_j),
-        step(edges[2].step_j),
-    ];
+    // Per edge, the change of `E >> 8` from the block's first column to each lane's, and per row.
+    let lanes = edges.map(|edge| COLUMNS * i32x8::splat(step(edge.step_i)));
+    let row_steps = edges.map(|edge| i32x8::splat(step(edge.step_j)));
     let mut passed = 0;
     let mut bj = j0;
     // Blocks start at the box's first column: a triangle up to eight pixels wide takes one block
@@ -158,19 +200,13 @@ pub(crate) fn rasterize<S: Sink>(
                 (i0 - bi).clamp(-1, BLOCK_I64) as i32,
                 (i1 - bi).clamp(-1, BLOCK_I64) as i32,
             );
-            let mut outside = [0u32; BLOCK];
-            for k in 0..BLOCK {
-                #[expect(clippy::cast_sign_loss, reason = "the sign, spread to every bit")]
-                let sign = (((COLUMNS[k] - lo) | (hi - COLUMNS[k])) >> 31) as u32;
-                outside[k] = sign;
-            }
-            let mut corners = [
-                corner(edges[0].at(bi, bj)),
-                corner(edges[1].at(bi, bj)),
-                corner(edges[2].at(bi, bj)),
-            ];
+            let outside =
+                ((COLUMNS - i32x8::splat(lo)) | (i32x8::splat(hi) - COLUMNS)).is_negative();
+            // `E >> 8` at the eight centres of the block's first row, per edge.
+            let mut values =
+                [0, 1, 2].map(|e| i32x8::splat(corner(edges[e].at(bi, bj))) + lanes[e]);
             // The column part of the depth, once per block; the row part once per row.
-            let column_z = setup.column_depths(bi);
+            let column_z = setup.depth.column_depths(bi);
             #[expect(
                 clippy::cast_sign_loss,
                 clippy::cast_possible_truncation,
@@ -178,15 +214,15 @@ pub(crate) fn rasterize<S: Sink>(
             )]
             let mut start = ((bj - tile.y0) as usize) * TILE_STRIDE + (bi - tile.x0) as usize;
             for r in 0..rows {
-                let uncovered = row_uncovered(corners, &lanes, &outside);
-                let row_z = setup.row_depth(bj + r);
+                let uncovered = row_uncovered(&values, outside);
+                let row_z = setup.depth.row_depth(bj + r);
                 let mut z = [0.0; BLOCK];
                 for k in 0..BLOCK {
                     z[k] = row_z + column_z[k];
                 }
                 passed += sink.row(start, &uncovered, &z, triangle);
-                for k in 0..3 {
-                    corners[k] += row_steps[k];
+                for (value, row_step) in values.iter_mut().zip(row_steps) {
+                    *value += row_step;
                 }
                 start += TILE_STRIDE;
             }
@@ -226,15 +262,16 @@ mod tests {
                 for step_j in steps {
                     // Edge functions step by multiples of 256 (SUBPIXELS per pixel).
                     let (si, sj) = (step_i & !255, step_j & !255);
-                    let lanes = [COLUMNS.map(|k| k * step(si)), [0; BLOCK], [0; BLOCK]];
-                    let mut edges = [corner(e), 0, 0];
+                    let zero = i32x8::splat(0);
+                    let first_row = i32x8::splat(corner(e)) + COLUMNS * i32x8::splat(step(si));
+                    let mut values = [first_row, zero, zero];
                     for r in 0..8i64 {
-                        let uncovered = row_uncovered(edges, &lanes, &[0; BLOCK]);
+                        let uncovered = row_uncovered(&values, zero);
                         for (k, lane) in (0..8i64).zip(uncovered) {
                             let exact = e + sj * r + si * k >= 0;
                             assert_eq!(exact, lane == 0, "e {e} si {si} sj {sj} r {r} k {k}");
                         }
-                        edges[0] += step(sj);
+                        values[0] += i32x8::splat(step(sj));
                     }
                 }
             }

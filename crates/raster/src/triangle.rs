@@ -122,6 +122,43 @@ impl Edge {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct Setup {
     pub(crate) edges: [Edge; 3],
+    pub(crate) depth: DepthPlane,
+}
+
+impl Setup {
+    /// The setup of a triangle [`classify`] accepted, given the doubled area it found (non-zero).
+    #[inline]
+    pub(crate) fn new(v: &[WindowVertex; 3], area: i64) -> Self {
+        let oriented = counter_clockwise(v, area);
+        Self {
+            edges: edges(&oriented),
+            depth: DepthPlane::new(&oriented, area),
+        }
+    }
+}
+
+/// The vertices in counter-clockwise order (y up), given the doubled signed area (non-zero).
+#[inline]
+pub(crate) fn counter_clockwise(v: &[WindowVertex; 3], area: i64) -> [WindowVertex; 3] {
+    debug_assert_eq!(area, doubled_area(v));
+    debug_assert_ne!(area, 0);
+    if area > 0 { *v } else { [v[0], v[2], v[1]] }
+}
+
+/// The edge functions of a counter-clockwise triangle.
+#[inline]
+pub(crate) fn edges(v: &[WindowVertex; 3]) -> [Edge; 3] {
+    [
+        Edge::new(v[0], v[1]),
+        Edge::new(v[1], v[2]),
+        Edge::new(v[2], v[0]),
+    ]
+}
+
+/// Window depth as a linear function of the window position (GL interpolates z linearly in
+/// screen space), relative to the first vertex so that nearby pixels keep full precision.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct DepthPlane {
     /// The reference vertex's grid coordinates and depth.
     origin_x: i64,
     origin_y: i64,
@@ -131,22 +168,24 @@ pub(crate) struct Setup {
     dz_dy: f64,
 }
 
-impl Setup {
-    /// The setup of a triangle [`classify`] accepted, given the doubled area it found (non-zero).
+impl DepthPlane {
+    /// The plane through a counter-clockwise triangle, given its doubled area (non-zero; either
+    /// sign, its magnitude is used).
     #[inline]
     pub(crate) fn new(v: &[WindowVertex; 3], area: i64) -> Self {
-        debug_assert_eq!(area, doubled_area(v));
-        debug_assert_ne!(area, 0);
-        let [a, b, c] = if area > 0 { *v } else { [v[0], v[2], v[1]] };
+        let [a, b, c] = *v;
+        #[expect(
+            clippy::cast_precision_loss,
+            reason = "a doubled area below 2^49 grid units², exact in f64"
+        )]
         let area = area.abs() as f64;
         let (ax, ay) = (i64::from(a.x), i64::from(a.y));
         // Grid deltas are below 2^25 in magnitude: exact in f64.
-        let (bx, by) = ((i64::from(b.x) - ax) as f64, (i64::from(b.y) - ay) as f64);
-        let (cx, cy) = ((i64::from(c.x) - ax) as f64, (i64::from(c.y) - ay) as f64);
+        let (bx, by) = (f64::from(b.x - a.x), f64::from(b.y - a.y));
+        let (cx, cy) = (f64::from(c.x - a.x), f64::from(c.y - a.y));
         let (bz, cz) = (b.z - a.z, c.z - a.z);
         let inverse_area = 1.0 / area;
         Self {
-            edges: [Edge::new(a, b), Edge::new(b, c), Edge::new(c, a)],
             origin_x: ax,
             origin_y: ay,
             origin_z: a.z,

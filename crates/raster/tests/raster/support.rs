@@ -55,9 +55,15 @@ pub(crate) fn ndc(window: f64, size: u32) -> f64 {
     window / f64::from(size) * 2.0 - 1.0
 }
 
+/// The smallest cell, in pixels, whose vertices [`jittered_grid`] may move to pixel centres. The
+/// move is at most half a pixel per axis, within the fifth of a cell per axis that the jitter keeps
+/// to (so quads stay convex) once cells are 2.5 pixels wide; smaller cells could fold the grid.
+pub(crate) const CENTRE_SNAP_MIN_CELL: f64 = 2.5;
+
 /// A jittered grid of `cells × cells` quads covering `[-extent, extent]²` in NDC, each split along
 /// a random diagonal, with random winding. Interior vertices are jittered on the 1/256-pixel grid
-/// of a `size × size` target; some are put exactly on pixel centres, so edges pass through centres.
+/// of a `size × size` target; where cells are at least [`CENTRE_SNAP_MIN_CELL`] pixels wide, some
+/// are put exactly on pixel centres, so edges pass through centres.
 pub(crate) fn jittered_grid(rng: &mut Rng, cells: usize, extent: f64, size: u32) -> Mesh {
     let mut mesh = Mesh::default();
     let n = cells + 1;
@@ -68,7 +74,8 @@ pub(crate) fn jittered_grid(rng: &mut Rng, cells: usize, extent: f64, size: u32)
             let (mut x, mut y) = (-extent + step * column as f64, -extent + step * row as f64);
             let interior = row > 0 && row < n - 1 && column > 0 && column < n - 1;
             if interior {
-                match rng.below(3) {
+                let centre_snap = step / pixel >= CENTRE_SNAP_MIN_CELL;
+                match rng.below(if centre_snap { 3 } else { 2 }) + u64::from(!centre_snap) {
                     // Exactly on a pixel centre near the grid point.
                     0 => {
                         x = ndc(((x + 1.0) / pixel).floor() + 0.5, size);
