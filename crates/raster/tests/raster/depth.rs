@@ -234,3 +234,70 @@ fn the_eye_resolve_is_perspective_correct() {
     let bad = target.resolve(mesh, &normals[..3], &m);
     assert!(bad.is_err());
 }
+
+/// A small triangle at NDC depth 0 (window depth 0.5) over the lower-left part of the viewport.
+fn small_triangle() -> Mesh {
+    let mut mesh = Mesh::default();
+    let [a, b, c] =
+        [(-1.0, -1.0), (0.0, -1.0), (-1.0, 0.0)].map(|(x, y)| mesh.vertex(DVec3::new(x, y, 0.0)));
+    mesh.triangles = vec![[a, b, c]];
+    mesh
+}
+
+/// Claim: a target reads as its clear value before any draw, keeps it where nothing is drawn, and a
+/// clear between draws forgets the first draw entirely — for all three targets.
+#[test]
+fn clears_hold_before_between_and_after_draws() {
+    let size = 128u32;
+    let pixels = (size * size) as usize;
+    let mut raster = Rasterizer::new(RasterOptions::default());
+    let (triangle, nothing) = (small_triangle(), Mesh::default());
+    let covered = |depths: &[f64]| depths.iter().filter(|&&z| z == 0.5).count();
+
+    let mut target = DepthTarget::new(size, size, DepthFormat::F32).unwrap();
+    assert_eq!(target.depths(), vec![1.0; pixels]);
+    target.clear(0.75);
+    assert_eq!(target.depths(), vec![0.75; pixels]);
+    let drawn = raster
+        .draw_depth(&mut target, triangle.triangles(), &DMat4::IDENTITY)
+        .unwrap()
+        .fragments;
+    let depths = target.depths();
+    assert_eq!(covered(&depths) as u64, drawn);
+    assert!(drawn > 0);
+    assert!(depths.iter().all(|&z| z == 0.5 || z == 0.75));
+    target.clear(0.25);
+    raster
+        .draw_depth(&mut target, nothing.triangles(), &DMat4::IDENTITY)
+        .unwrap();
+    assert_eq!(target.depths(), vec![0.25; pixels]);
+
+    let mut pair = DepthPairTarget::new(size, size, DepthFormat::F32).unwrap();
+    for _ in 0..2 {
+        raster
+            .draw_depth_pair(&mut pair, triangle.triangles(), &DMat4::IDENTITY)
+            .unwrap();
+    }
+    // Drawn twice: the second draw's fragments are second-nearest (equal depth, not nearer).
+    assert_eq!(covered(&pair.nearest()) as u64, drawn);
+    assert_eq!(covered(&pair.second()) as u64, drawn);
+    pair.clear();
+    assert_eq!(pair.nearest(), vec![1.0; pixels]);
+    assert_eq!(pair.second(), vec![1.0; pixels]);
+
+    let mut eye = EyeTarget::new(size, size, DepthFormat::F32).unwrap();
+    raster
+        .draw_eye(&mut eye, triangle.triangles(), &DMat4::IDENTITY)
+        .unwrap();
+    assert_eq!(
+        eye.triangles().iter().filter(|&&t| t == 0).count() as u64,
+        drawn
+    );
+    eye.clear();
+    assert_eq!(eye.triangles(), vec![NO_TRIANGLE; pixels]);
+    raster
+        .draw_eye(&mut eye, nothing.triangles(), &DMat4::IDENTITY)
+        .unwrap();
+    assert_eq!(eye.depths(), vec![1.0; pixels]);
+    assert_eq!(eye.triangles(), vec![NO_TRIANGLE; pixels]);
+}
