@@ -34,5 +34,9 @@ for k, v in d.items():
   done
 done
 echo "== shadowlab timings: cargo bench --bench raster"
-cargo bench --bench raster 2>&1 | grep -E "^raster/|time:" | paste - - | sed 's/ \+/ /g'
+# One line per benchmark: its name, then criterion's [low median high] time and throughput.
+cargo bench --bench raster 2>&1 | awk '
+  /^raster\// { name = $1 }
+  /^ +time:/ && !/%/ { sub(/^ +time: +/, ""); time = $0 }
+  /^ +thrpt:/ && !/%/ { sub(/^ +thrpt: +/, ""); print "  " name "  time " time "  thrpt " $0 }'
 rm -rf "$out"

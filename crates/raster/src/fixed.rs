@@ -3,7 +3,9 @@
 //! Window coordinates (pixels, GL convention: x right, y up, pixel `(i, j)` covering
 //! `[i, i+1) × [j, j+1)` with its centre at `(i + ½, j + ½)`) are snapped to a grid of
 //! `1/2^SUBPIXEL_BITS` pixel, as GL implementations do. Snapping rounds to the nearest grid point, ties
-//! away from zero (`f64::round`). From then on coverage is decided in exact integer arithmetic.
+//! to even (`f64::round_ties_even`), as Direct3D specifies and Mesa's llvmpipe does (`lrintf` in the
+//! default rounding mode). Exact ties happen for dyadic inputs, e.g. a vertex at a half grid unit.
+//! From then on coverage is decided in exact integer arithmetic.
 
 /// Fractional bits of a snapped window coordinate: 8, i.e. 1/256 pixel.
 pub const SUBPIXEL_BITS: u32 = 8;
@@ -26,7 +28,7 @@ pub const GUARD_BAND: u32 = 8192;
 /// A window coordinate snapped to the grid; `|x| < 2^23` for coordinates inside the guard band.
 #[must_use]
 pub(crate) fn snap(window: f64) -> i32 {
-    let grid = (window * SUBPIXELS as f64).round();
+    let grid = (window * SUBPIXELS as f64).round_ties_even();
     debug_assert!(
         grid.abs() < f64::from(1u32 << 24),
         "{window} outside the guard band"
@@ -73,8 +75,10 @@ mod tests {
     #[test]
     fn snapping_rounds_to_the_nearest_grid_point() {
         assert_eq!(snap(0.5), 128);
-        assert_eq!(snap(1.0 / 512.0), 1); // a tie rounds away from zero
-        assert_eq!(snap(-1.0 / 512.0), -1);
+        assert_eq!(snap(1.0 / 512.0), 0); // ties go to the even grid point
+        assert_eq!(snap(3.0 / 512.0), 2);
+        assert_eq!(snap(-1.0 / 512.0), 0);
+        assert_eq!(snap(-3.0 / 512.0), -2);
         assert_eq!(snap(1.0 / 1024.0), 0);
         assert_eq!(snap(100.25), 25664);
     }
