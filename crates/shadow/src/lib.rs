@@ -1,0 +1,1 @@
+//! # shadowlab-shadow: shadow-map techniques (work in progress)

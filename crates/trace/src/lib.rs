@@ -1,0 +1,1 @@
+//! # shadowlab-trace: exact ray casting against triangle meshes (work in progress)
