@@ -1,1 +1,39 @@
-//! # shadowlab-shadow: shadow-map techniques (work in progress)
+//! # shadowlab-shadow: the shadow-map techniques of the five papers
+//!
+//! A technique turns the eye, a light and the scene bounds into a light set-up: the view and
+//! projection (or, for the logarithmic map, the exact mapping) the shadow map is rendered with.
+//!
+//! | technique | paper | module |
+//! |---|---|---|
+//! | uniform, focused on B | the standard shadow map; B of PSM §4.1 / LiSPSM §3.3 | `plan`, `warp` (LiSPSM with `n = ∞`) |
+//! | uniform with frustum limiting | CG06 §6 | `plan` |
+//! | PSM | Stamminger & Drettakis 2002 | [`psm`] |
+//! | LiSPSM, any parameter rule or engine variant | Wimmer et al. 2004 §3; CAD; GMNPR; production-variants.md | `plan`, `warp`, `frame` |
+//! | logarithmic | LiSPSM §4, Lloyd et al. 2008 | [`logarithmic`] |
+//!
+//! Every light-space technique (uniform, LiSPSM, logarithmic) works in LiSPSM's light space
+//! (`shadowlab_hull::LightSpace`: y toward the light, the viewer looking down −z), for spot lights
+//! after the spot's perspective transform (LiSPSM §3.4). [`measure`] measures the aliasing of a
+//! planned map, which the tests hold against the closed forms of `shadowlab-params`.
+//!
+//! # Conventions
+//! The shadow map's window x runs across the light's view, window y along the warp axis (0 on the
+//! viewer's side), depth away from the light; the depth test is `Less` for every technique.
+//! Matrices act on column vectors and produce GL clip space (NDC depth in `[−1, 1]`).
+
+mod error;
+mod frame;
+mod input;
+pub mod logarithmic;
+pub mod measure;
+mod plan;
+pub mod psm;
+mod setup;
+mod technique;
+mod warp;
+
+pub use error::ShadowError;
+pub use input::{Eye, FocusPolicy, LightSource, PlanInput};
+pub use plan::plan;
+pub use setup::{LightSetup, PsmReport, ShadowMapping, WarpReport};
+pub use technique::{ProductionVariant, Technique, WarpChoice};

@@ -1,0 +1,66 @@
+//! What can go wrong when planning a shadow map.
+
+use std::fmt;
+
+use shadowlab_hull::HullError;
+use shadowlab_params::ParamError;
+
+/// A light set-up that cannot be built, with the reason.
+#[derive(Clone, Debug, PartialEq)]
+pub enum ShadowError {
+    /// A camera, light or body was rejected by `shadowlab-hull`.
+    Geometry(HullError),
+    /// A parameter was rejected by `shadowlab-params`.
+    Parameter(ParamError),
+    /// The focus body B is empty: nothing in the scene bounds can cast a shadow into the view.
+    EmptyFocusBody,
+    /// The focus body is flat along an axis the shadow map must span (named), so no map fits it.
+    FlatFocusBody {
+        /// `"warp axis"`, `"lateral axis"` or `"light axis"`.
+        axis: &'static str,
+    },
+    /// The technique has no set-up for this configuration (like GLPR for γ ≤ φ); the reason says why.
+    NotDefined {
+        /// The technique's key.
+        technique: &'static str,
+        /// Why, in words.
+        reason: String,
+    },
+    /// The light lies inside the region the shadow map must cover, so no projection from it fits.
+    LightInsideFocusBody,
+}
+
+impl fmt::Display for ShadowError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::Geometry(e) => write!(f, "{e}"),
+            Self::Parameter(e) => write!(f, "{e}"),
+            Self::EmptyFocusBody => f.write_str(
+                "the focus body is empty: nothing inside the scene bounds can cast a shadow into the view",
+            ),
+            Self::FlatFocusBody { axis } => {
+                write!(f, "the focus body is flat along the shadow map's {axis}")
+            }
+            Self::NotDefined { technique, reason } => {
+                write!(f, "{technique} is not defined here: {reason}")
+            }
+            Self::LightInsideFocusBody => {
+                f.write_str("the light lies inside the region its shadow map must cover")
+            }
+        }
+    }
+}
+
+impl std::error::Error for ShadowError {}
+
+impl From<HullError> for ShadowError {
+    fn from(e: HullError) -> Self {
+        Self::Geometry(e)
+    }
+}
+
+impl From<ParamError> for ShadowError {
+    fn from(e: ParamError) -> Self {
+        Self::Parameter(e)
+    }
+}

@@ -1,0 +1,92 @@
+//! Light space (LiSPSM §3.4), for directional lights in world space and for spot lights after the
+//! spot's own perspective transform, where "point lights can be treated as directional lights from
+//! this point on" (LiSPSM §3.4).
+
+use glam::{DMat3, DMat4, DVec3, DVec4};
+use shadowlab_hull::{LightSpace, NdcDepth, ViewPose};
+
+use crate::error::ShadowError;
+use crate::input::{Eye, LightSource};
+
+/// Where a light-space technique works: an optional projective pre-transform (a spot light's
+/// view-projection, after which its rays are parallel), then LiSPSM's light space with its origin at
+/// the eye.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct LightFrame {
+    /// World → the space in which the light is directional (identity for a directional light).
+    pre: DMat4,
+    /// The axes (rows: x, y toward the light, z with the viewer looking down −z).
+    rotation: DMat3,
+    /// The eye, in the pre-transformed space: the light-space origin.
+    origin: DVec3,
+    /// γ, the angle between light and view directions in that space.
+    gamma: f64,
+}
+
+impl LightFrame {
+    /// The frame for `eye` and `light`.
+    ///
+    /// # Errors
+    /// [`ShadowError::NotDefined`] if the eye is not in front of a spot light (its perspective
+    /// transform would fold the view); geometry errors from `shadowlab-hull`.
+    pub(crate) fn new(
+        eye: &Eye,
+        light: &LightSource,
+        technique: &'static str,
+    ) -> Result<Self, ShadowError> {
+        let (pre, pose, to_light) = match light {
+            LightSource::Directional { to_light } => (DMat4::IDENTITY, eye.pose, *to_light),
+            LightSource::Spot { pose, cone } => {
+                let pre = cone.matrix(NdcDepth::NegativeOneToOne) * pose.view_matrix();
+                let e = eye.pose.eye();
+                let h = pre * e.extend(1.0);
+                if h.w <= 0.0 {
+                    return Err(ShadowError::NotDefined {
+                        technique,
+                        reason: "the eye is behind the spot light's plane".into(),
+                    });
+                }
+                let origin = h.truncate() / h.w;
+                // The tangent map of the projective transform at the eye carries the view and up
+                // directions into the spot's space.
+                let carry = |direction: DVec3| {
+                    let d = pre * direction.extend(0.0);
+                    (d.truncate() * h.w - h.truncate() * d.w) / (h.w * h.w)
+                };
+                let pose =
+                    ViewPose::look_to(origin, carry(eye.pose.forward()), carry(eye.pose.up()))?;
+                // In the spot's NDC its rays run along +z (near plane −1, far plane +1).
+                (pre, pose, DVec3::NEG_Z)
+            }
+        };
+        let space = LightSpace::new(&pose, to_light)?;
+        Ok(Self {
+            pre,
+            rotation: DMat3::from_cols(space.x_axis(), space.y_axis(), space.z_axis()).transpose(),
+            origin: pose.eye(),
+            gamma: space.gamma(),
+        })
+    }
+
+    /// γ ∈ `[0, π/2]`.
+    pub(crate) fn gamma(&self) -> f64 {
+        self.gamma
+    }
+
+    /// World → light space, as a projective 4×4 matrix (affine for a directional light).
+    pub(crate) fn world_to_light(&self) -> DMat4 {
+        let rotate = DMat4::from_mat3(self.rotation);
+        rotate * DMat4::from_translation(-self.origin) * self.pre
+    }
+
+    /// A world point in light space (`None` if a spot's transform sends it behind the light).
+    pub(crate) fn light_point(&self, world: DVec3) -> Option<DVec3> {
+        let h: DVec4 = self.world_to_light() * world.extend(1.0);
+        (h.w > 0.0).then(|| h.truncate() / h.w)
+    }
+
+    /// Light-space points of a set of world points; `None` if one is behind a spot light.
+    pub(crate) fn light_points(&self, world: &[DVec3]) -> Option<Vec<DVec3>> {
+        world.iter().map(|p| self.light_point(*p)).collect()
+    }
+}

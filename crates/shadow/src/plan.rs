@@ -1,0 +1,287 @@
+//! `plan`: from the eye, the light and the scene bounds to a [`LightSetup`].
+
+use glam::{DMat4, DVec2, DVec3, DVec4};
+use shadowlab_hull::{Aabb2, ConvexHull2, MinAreaRect, Tolerances, convex_hull_2d, focus_body};
+use shadowlab_params::{DepthRange, FrustumModel, HalfFov, LightAngle};
+
+use crate::error::ShadowError;
+use crate::frame::LightFrame;
+use crate::input::{FocusPolicy, PlanInput};
+use crate::setup::{LightSetup, ShadowMapping, WarpReport};
+use crate::technique::{ProductionVariant, Technique, WarpChoice};
+use crate::warp::{self, Extents};
+use crate::{logarithmic, psm};
+
+/// Plans the shadow map of `technique` for `input`.
+///
+/// # Errors
+/// [`ShadowError`] naming why: an empty or flat focus body, a technique not defined for the
+/// configuration (GLPR for γ ≤ φ, the logarithmic map when the eye lies within B's warp-axis
+/// extent, …), or invalid geometry.
+pub fn plan(input: &PlanInput, technique: Technique) -> Result<LightSetup, ShadowError> {
+    match technique {
+        Technique::Uniform | Technique::Lispsm(_) => light_space_warp(input, technique),
+        Technique::UniformLimited => uniform_limited(input),
+        Technique::Psm => psm::plan(input),
+        Technique::Logarithmic => logarithmic::plan(input),
+    }
+}
+
+/// The vertices of the focus body B of `input`'s policy, in world space.
+pub(crate) fn focus_points(input: &PlanInput) -> Result<Vec<DVec3>, ShadowError> {
+    let frustum = input.eye.frustum();
+    match input.focus {
+        FocusPolicy::ViewFrustum => Ok(frustum.corners().to_vec()),
+        FocusPolicy::Scene => {
+            let body = focus_body(
+                &frustum,
+                &input.scene,
+                &input.light.hull_light(),
+                &Tolerances::DEFAULT,
+            )?
+            .ok_or(ShadowError::EmptyFocusBody)?;
+            Ok(body.vertices().to_vec())
+        }
+    }
+}
+
+/// The 2-D model of the view the parameter rules work in: the eye's depth range and φ toward the
+/// light.
+pub(crate) fn view_model(input: &PlanInput) -> Result<(FrustumModel, f64), ShadowError> {
+    let eye = &input.eye;
+    let toward = input.light.toward_from(eye.pose.eye());
+    let half_fov = eye.half_fov_toward(toward);
+    let model = FrustumModel::new(
+        DepthRange::new(eye.projection.near(), eye.projection.far())?,
+        HalfFov::from_radians(half_fov)?,
+    );
+    Ok((model, half_fov))
+}
+
+/// Uniform and LiSPSM: P fitted to B in light space (LiSPSM §3.4–3.5).
+fn light_space_warp(input: &PlanInput, technique: Technique) -> Result<LightSetup, ShadowError> {
+    let frame = LightFrame::new(&input.eye, &input.light, technique.key())?;
+    let world_points = focus_points(input)?;
+    let points = frame
+        .light_points(&world_points)
+        .ok_or(ShadowError::LightInsideFocusBody)?;
+    let (model, half_fov) = view_model(input)?;
+    let gamma = LightAngle::from_radians(frame.gamma())?;
+    let depth = Extents::of(&points).max.z - Extents::of(&points).min.z;
+    let kappa = match technique {
+        Technique::Lispsm(WarpChoice::Rule(rule)) => rule
+            .warp(&model, gamma)
+            .ok_or_else(|| ShadowError::NotDefined {
+                technique: "lispsm",
+                reason: format!(
+                    "the {} parameter needs γ > φ (γ = {:.4}°, φ = {:.4}°)",
+                    rule.key(),
+                    gamma.degrees(),
+                    half_fov.to_degrees()
+                ),
+            })?
+            .inverse_lambda(),
+        Technique::Lispsm(WarpChoice::Production(variant)) => {
+            production_kappa(variant, input, &points, gamma, depth)
+        }
+        _ => 0.0,
+    };
+    let fitted = warp::fit(&points, 0.0, kappa)?;
+    Ok(LightSetup {
+        technique,
+        mapping: ShadowMapping::Projective {
+            view: frame.world_to_light(),
+            projection: fitted.matrix,
+        },
+        gamma: gamma.radians(),
+        half_fov,
+        warp: Some(WarpReport {
+            lambda: 1.0 / kappa,
+            near_distance: fitted.depth / kappa,
+            depth: fitted.depth,
+        }),
+        psm: None,
+        focus_body: world_points,
+    })
+}
+
+/// Below this angle OSG's view-dependent shadow map is plainly orthographic (production-variants.md).
+const OSG_VDSM_ORTHOGRAPHIC_BELOW_DEGREES: f64 = 2.0;
+/// Filament switches the warp off when `sin γ` is at most this.
+const FILAMENT_NO_WARP_SIN: f64 = 0.02;
+/// Filament's "virtual" near and far hints, in metres.
+const FILAMENT_NEAR_HINT: f64 = 1.0;
+const FILAMENT_FAR_HINT: f64 = 100.0;
+/// OGRE's default optimisation factor and the angle inside which it strengthens the warp.
+const OGRE_FACTOR: f64 = 0.1;
+const OGRE_BOOST_RADIANS: f64 = 0.451;
+const OGRE_BOOST_MAX: f64 = 20.0;
+
+/// κ = d/n' of an engine's choice (production-variants.md), with B's depth `depth` along the warp
+/// axis. Where an engine divides by `sin γ = 0` (and so would produce NaN or infinity), the uniform
+/// map (κ = 0) is taken.
+fn production_kappa(
+    variant: ProductionVariant,
+    input: &PlanInput,
+    points: &[DVec3],
+    gamma: LightAngle,
+    depth: f64,
+) -> f64 {
+    let (zn, zf) = (input.eye.projection.near(), input.eye.projection.far());
+    let sin = gamma.sin();
+    let extents = Extents::of(points);
+    // z0: the eye depth where the view axis meets P's near plane (light-space z = z_max; the eye is
+    // the light-space origin and the view direction has z component −sin γ), at least the near
+    // plane; z1 = z0 + d sin γ.
+    let z0 = if sin > 0.0 {
+        (-extents.max.z / sin).max(zn)
+    } else {
+        zn
+    };
+    let z1 = z0 + depth * sin;
+    let n = match variant {
+        ProductionVariant::Filament => {
+            if sin <= FILAMENT_NO_WARP_SIN {
+                return 0.0;
+            }
+            let dzn = (FILAMENT_NEAR_HINT - zn).max(0.0);
+            let ratio = 3.0 * dzn / (zf - zn);
+            if ratio >= 2.0 {
+                return 0.0;
+            }
+            ((z0 + (FILAMENT_NEAR_HINT * FILAMENT_FAR_HINT).sqrt()) / sin).max(dzn / (2.0 - ratio))
+        }
+        ProductionVariant::Ogre => {
+            let e_z = extents.max.z.abs();
+            let cos = gamma.cos();
+            let cos_boost = OGRE_BOOST_RADIANS.cos();
+            let boost = if cos > cos_boost {
+                1.0 + OGRE_BOOST_MAX * (cos - cos_boost) / (1.0 - cos_boost)
+            } else {
+                1.0
+            };
+            (e_z + (zn * zf).sqrt()) * OGRE_FACTOR * boost
+        }
+        ProductionVariant::Osg => {
+            if sin == 0.0 {
+                return 0.0;
+            }
+            let zn_prime = zn / sin;
+            let zf_prime = zn_prime + depth * sin;
+            (zn_prime + (zn_prime * zf_prime).sqrt()) / sin
+        }
+        ProductionVariant::Authors2006 => {
+            match shadowlab_params::lispsm::n_general(depth, z0, z1) {
+                Ok(n) => n,
+                Err(_) => return 0.0,
+            }
+        }
+        ProductionVariant::OsgViewDependent => {
+            if gamma.degrees() < OSG_VDSM_ORTHOGRAPHIC_BELOW_DEGREES {
+                return 0.0;
+            }
+            // In a light clip space of depth 2 spanning B along the warp axis; the eye's position
+            // there is −1 at P's near plane (z_max) and +1 at its far plane.
+            let eye_y = 2.0 * extents.max.z / depth - 1.0;
+            let cot = gamma.cos() / sin;
+            let n_clip = (30f64.to_radians().tan() * cot * cot).max((-1.0 - eye_y).max(0.05));
+            n_clip * depth / 2.0
+        }
+    };
+    if n.is_finite() && n > 0.0 {
+        depth / n
+    } else {
+        0.0
+    }
+}
+
+/// The standard shadow map with CG06's frustum limiting: the window is the minimum-area rectangle
+/// around the view frustum's projection on the shadow-map plane, clipped to B's extent there; the
+/// depth range is B's.
+fn uniform_limited(input: &PlanInput) -> Result<LightSetup, ShadowError> {
+    let technique = Technique::UniformLimited;
+    let frame = LightFrame::new(&input.eye, &input.light, technique.key())?;
+    let world_points = focus_points(input)?;
+    let points = frame
+        .light_points(&world_points)
+        .ok_or(ShadowError::LightInsideFocusBody)?;
+    let (_, half_fov) = view_model(input)?;
+    let extents = Extents::of(&points);
+    // The view frustum's corners on the shadow-map plane (x, z); for a spot light, B's points
+    // where a corner lies behind the spot.
+    let corners = input.eye.frustum().corners().to_vec();
+    let projected: Vec<DVec2> = match frame.light_points(&corners) {
+        Some(c) => c.iter().map(|p| DVec2::new(p.x, p.z)).collect(),
+        None => points.iter().map(|p| DVec2::new(p.x, p.z)).collect(),
+    };
+    let window = Aabb2::from_points(&[
+        DVec2::new(extents.min.x, extents.min.z),
+        DVec2::new(extents.max.x, extents.max.z),
+    ])?;
+    let hull = match convex_hull_2d(&projected)? {
+        ConvexHull2::Polygon(polygon) => clip_to_box(polygon.vertices(), &window),
+        _ => {
+            return Err(ShadowError::FlatFocusBody {
+                axis: "lateral axis",
+            });
+        }
+    };
+    let rect = MinAreaRect::of_points(&hull)?;
+    let [u, v] = rect.axes();
+    let (c, h) = (rect.center(), rect.half_extents());
+    let depth_range = extents.max.y - extents.min.y;
+    if depth_range <= 0.0 {
+        return Err(ShadowError::FlatFocusBody { axis: "light axis" });
+    }
+    // Rows on light-space (x, y, z, 1): X along u, Y along v (both on the x–z plane), depth along −y.
+    let x_row = DVec4::new(u.x, 0.0, u.y, -c.dot(u)) / h.x;
+    let y_row = DVec4::new(v.x, 0.0, v.y, -c.dot(v)) / h.y;
+    let z_row = DVec4::new(0.0, -2.0, 0.0, extents.max.y + extents.min.y) / depth_range;
+    let projection = DMat4::from_cols(x_row, y_row, z_row, DVec4::W).transpose();
+    Ok(LightSetup {
+        technique,
+        mapping: ShadowMapping::Projective {
+            view: frame.world_to_light(),
+            projection,
+        },
+        gamma: frame.gamma(),
+        half_fov,
+        warp: None,
+        psm: None,
+        focus_body: world_points,
+    })
+}
+
+/// A convex polygon clipped to an axis-aligned box (Sutherland–Hodgman, one side at a time).
+fn clip_to_box(polygon: &[DVec2], window: &Aabb2) -> Vec<DVec2> {
+    let (lo, hi) = (window.min(), window.max());
+    // Each side as (axis, bound, keep the side where coordinate ≥ bound if `above`).
+    let sides = [
+        (0, lo.x, true),
+        (0, hi.x, false),
+        (1, lo.y, true),
+        (1, hi.y, false),
+    ];
+    let mut out = polygon.to_vec();
+    for (axis, bound, above) in sides {
+        let inside = |p: DVec2| {
+            if above {
+                p[axis] >= bound
+            } else {
+                p[axis] <= bound
+            }
+        };
+        let input = std::mem::take(&mut out);
+        for (k, &p) in input.iter().enumerate() {
+            let q = input[(k + 1) % input.len()];
+            if inside(p) {
+                out.push(p);
+            }
+            if inside(p) != inside(q) {
+                let t = (bound - p[axis]) / (q[axis] - p[axis]);
+                out.push(p + (q - p) * t);
+            }
+        }
+    }
+    out
+}

@@ -1,0 +1,101 @@
+//! What a technique produces: the light's view and projection (or, for the logarithmic map, its
+//! exact non-projective mapping), and what it decided on the way.
+
+use glam::{DMat4, DVec3};
+
+use crate::logarithmic::LogarithmicMap;
+use crate::technique::Technique;
+
+/// How world points map to the shadow map.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ShadowMapping {
+    /// GL clip space = `projection · view · (p, 1)`; window coordinates `(ndc + 1)/2`. Depth grows
+    /// away from the light, so the depth test is `Less` for every technique (PSM's inverted lights
+    /// included: their depth axis is flipped instead of the test).
+    Projective {
+        /// World → the technique's light view space (light space, or the virtual camera's eye
+        /// space for PSM).
+        view: DMat4,
+        /// Light view space → GL clip space of the shadow map.
+        projection: DMat4,
+    },
+    /// The logarithmic parameterisation, evaluated exactly (see [`LogarithmicMap`]).
+    Logarithmic(LogarithmicMap),
+}
+
+impl ShadowMapping {
+    /// The shadow-map window coordinates of a world point: `x, y ∈ [0, 1]` across the map and
+    /// depth in `[0, 1]` (GL window depth) where the point lies inside the map's volume; `None` if
+    /// the mapping sends it behind its projection centre.
+    #[must_use]
+    pub fn window(&self, world: DVec3) -> Option<DVec3> {
+        let ndc = match self {
+            Self::Projective { view, projection } => {
+                let clip = *projection * *view * world.extend(1.0);
+                if clip.w <= 0.0 {
+                    return None;
+                }
+                clip.truncate() / clip.w
+            }
+            Self::Logarithmic(map) => map.ndc(world)?,
+        };
+        Some((ndc + DVec3::ONE) * 0.5)
+    }
+
+    /// World → GL clip space, for the projective techniques.
+    #[must_use]
+    pub fn clip_from_world(&self) -> Option<DMat4> {
+        match self {
+            Self::Projective { view, projection } => Some(*projection * *view),
+            Self::Logarithmic(_) => None,
+        }
+    }
+}
+
+/// The warp a light-space technique chose.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct WarpReport {
+    /// λ = n'/d; `f64::INFINITY` for the uniform map.
+    pub lambda: f64,
+    /// n', the distance from the projection reference point to P's near plane (world units in
+    /// light space; spot lights: the spot's normalized device space); infinite for uniform.
+    pub near_distance: f64,
+    /// d, B's extent along the warp axis.
+    pub depth: f64,
+}
+
+/// A planned shadow map: how to render it and what was decided.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LightSetup {
+    /// The technique that made it.
+    pub technique: Technique,
+    /// World → shadow map.
+    pub mapping: ShadowMapping,
+    /// γ, the angle between the view and light directions, radians in `[0, π/2]`.
+    pub gamma: f64,
+    /// φ, half the view's field of view in the light–view plane, radians.
+    pub half_fov: f64,
+    /// The warp parameter, for the light-space techniques (LiSPSM, uniform, logarithmic).
+    pub warp: Option<WarpReport>,
+    /// PSM only: the virtual camera's shift back along the view direction, and the near distance
+    /// it kept.
+    pub psm: Option<PsmReport>,
+    /// The vertices of the focus body the map was fitted to, in world space.
+    pub focus_body: Vec<DVec3>,
+}
+
+/// What PSM decided.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PsmReport {
+    /// Δ, the virtual camera's shift back along the view direction (formulas.md §3.3).
+    pub shift: f64,
+    /// The near distance used (the nearest visible depth, or the camera's near plane).
+    pub near: f64,
+    /// Whether the light lies behind the viewer, so that it is *inverted* in post-perspective space
+    /// (its rays converge): the shadow map keeps the surface furthest from the post-perspective
+    /// light point (PSM §4.3; formulas.md §3.2).
+    pub inverted: bool,
+    /// Whether the light is parallel to the image plane, where it stays directional in
+    /// post-perspective space (`|w'| ≤` [`crate::psm::DIRECTIONAL_W`] relative).
+    pub directional: bool,
+}
