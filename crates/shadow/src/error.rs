@@ -4,6 +4,7 @@ use std::fmt;
 
 use shadowlab_hull::HullError;
 use shadowlab_params::ParamError;
+use shadowlab_raster::RasterError;
 
 /// A light set-up that cannot be built, with the reason.
 #[derive(Clone, Debug, PartialEq)]
@@ -12,6 +13,8 @@ pub enum ShadowError {
     Geometry(HullError),
     /// A parameter was rejected by `shadowlab-params`.
     Parameter(ParamError),
+    /// The rasterizer rejected a draw (bad indices, target size).
+    Raster(RasterError),
     /// The focus body B is empty: nothing in the scene bounds can cast a shadow into the view.
     EmptyFocusBody,
     /// The focus body is flat along an axis the shadow map must span (named), so no map fits it.
@@ -35,6 +38,7 @@ impl fmt::Display for ShadowError {
         match self {
             Self::Geometry(e) => write!(f, "{e}"),
             Self::Parameter(e) => write!(f, "{e}"),
+            Self::Raster(e) => write!(f, "{e}"),
             Self::EmptyFocusBody => f.write_str(
                 "the focus body is empty: nothing inside the scene bounds can cast a shadow into the view",
             ),
@@ -56,6 +60,12 @@ impl std::error::Error for ShadowError {}
 impl From<HullError> for ShadowError {
     fn from(e: HullError) -> Self {
         Self::Geometry(e)
+    }
+}
+
+impl From<RasterError> for ShadowError {
+    fn from(e: RasterError) -> Self {
+        Self::Raster(e)
     }
 }
 

@@ -25,6 +25,8 @@ mod error;
 mod frame;
 mod input;
 pub mod logarithmic;
+mod lookup;
+mod map;
 pub mod measure;
 mod plan;
 pub mod psm;
@@ -34,6 +36,8 @@ mod warp;
 
 pub use error::ShadowError;
 pub use input::{Eye, FocusPolicy, LightSource, PlanInput};
-pub use plan::plan;
+pub use lookup::{Bias, Filter, Lookup};
+pub use map::{MapOptions, ShadowMap};
+pub use plan::{Partition, Splits, plan, plan_partitions};
 pub use setup::{LightSetup, PsmReport, ShadowMapping, WarpReport};
 pub use technique::{ProductionVariant, Technique, WarpChoice};

@@ -1,7 +1,10 @@
 //! `plan`: from the eye, the light and the scene bounds to a [`LightSetup`].
 
 use glam::{DMat4, DVec2, DVec3, DVec4};
-use shadowlab_hull::{Aabb2, ConvexHull2, MinAreaRect, Tolerances, convex_hull_2d, focus_body};
+use shadowlab_hull::{
+    Aabb2, ConvexHull2, MinAreaRect, Perspective, Tolerances, convex_hull_2d, focus_body,
+};
+use shadowlab_params::splits::SplitScheme;
 use shadowlab_params::{DepthRange, FrustumModel, HalfFov, LightAngle};
 
 use crate::error::ShadowError;
@@ -284,4 +287,80 @@ fn clip_to_box(polygon: &[DVec2], window: &Aabb2) -> Vec<DVec2> {
         }
     }
     out
+}
+
+/// How the view's depth range is split for z-partitioning.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Splits {
+    /// Equal lengths.
+    Uniform,
+    /// Equal ratios (CAD eq. 5).
+    Logarithmic,
+    /// Zhang et al.'s practical blend with the logarithmic split's weight in `[0, 1]`.
+    Practical {
+        /// The logarithmic split's weight.
+        weight: f64,
+    },
+    /// CAD eq. 19 with its δ, at the configuration's own γ.
+    Adaptive {
+        /// δ > 1.
+        delta: f64,
+    },
+}
+
+/// One part of a z-partitioned shadow: the eye depths it serves and its map's set-up.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Partition {
+    /// The eye depth where it starts.
+    pub near: f64,
+    /// The eye depth where it ends.
+    pub far: f64,
+    /// Its light set-up, planned for the sub-frustum `[near, far]`.
+    pub setup: LightSetup,
+}
+
+/// z-partitioning (CAD §3.3): the view's depth range split into `count` parts by `splits`, each
+/// part's sub-frustum focused and warped by `technique` on its own. One part is the unpartitioned
+/// map.
+///
+/// # Errors
+/// As [`plan`] for any part; [`ShadowError::Parameter`] if the split scheme rejects the range or
+/// count.
+pub fn plan_partitions(
+    input: &PlanInput,
+    technique: Technique,
+    splits: Splits,
+    count: usize,
+) -> Result<Vec<Partition>, ShadowError> {
+    let projection = input.eye.projection;
+    let range = DepthRange::new(projection.near(), projection.far())?;
+    let gamma = || {
+        shadowlab_hull::light_view_angle(
+            input.eye.pose.forward(),
+            input.light.toward_from(input.eye.pose.eye()),
+        )
+    };
+    let scheme = match splits {
+        Splits::Uniform => SplitScheme::Uniform,
+        Splits::Logarithmic => SplitScheme::Logarithmic,
+        Splits::Practical { weight } => SplitScheme::Practical { weight },
+        Splits::Adaptive { delta } => SplitScheme::Adaptive {
+            delta,
+            gamma: LightAngle::from_radians(gamma()?)?,
+        },
+    };
+    let boundaries = scheme.boundaries(range, count)?;
+    boundaries
+        .windows(2)
+        .map(|pair| {
+            let mut part = *input;
+            part.eye.projection =
+                Perspective::new(projection.fov_y(), projection.aspect(), pair[0], pair[1])?;
+            Ok(Partition {
+                near: pair[0],
+                far: pair[1],
+                setup: plan(&part, technique)?,
+            })
+        })
+        .collect()
 }

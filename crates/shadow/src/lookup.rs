@@ -1,0 +1,283 @@
+//! Looking a point up in a shadow map: the depth-bias family (CAD Table 1, plus slope scaling),
+//! and the filters (nearest, PCF, a jittered disk, VSM).
+
+use std::f64::consts::TAU;
+
+use glam::{DMat2, DVec2, DVec3};
+use shadowlab_params::bias::DepthBias;
+use shadowlab_params::vsm::ShiftedMoments;
+
+use crate::map::ShadowMap;
+
+/// How the stored depth is offset before comparing (a receiver is lit when its depth is at most
+/// the offset stored depth). Depths are GL window depths of the map, `[0, 1]`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Bias {
+    /// No offset: the raw test, which acnes.
+    None,
+    /// Williams' constant offset, in window-depth units (CAD Table 1a).
+    Constant {
+        /// The offset.
+        offset: f64,
+    },
+    /// A constant plus `slope` times the receiver's depth slope per texel (the larger of
+    /// `|∂z/∂x|`, `|∂z/∂y|` over the map), as `glPolygonOffset(factor, units)` does.
+    SlopeScaled {
+        /// The constant part, in window-depth units.
+        constant: f64,
+        /// The factor on the slope.
+        slope: f64,
+    },
+    /// The second-nearest depth (Wang & Molnar, CAD Table 1b); needs a map with second depths.
+    SecondDepth,
+    /// The midpoint of the two nearest depths (Woo, CAD Table 1c); needs second depths.
+    Midpoint,
+    /// The midpoint capped at `max_bias` (CAD Table 1d); needs second depths.
+    DualDepth {
+        /// The cap, in window-depth units.
+        max_bias: f64,
+    },
+}
+
+impl Bias {
+    /// Whether the map must hold second-nearest depths.
+    #[must_use]
+    pub fn needs_second_depth(&self) -> bool {
+        matches!(
+            self,
+            Self::SecondDepth | Self::Midpoint | Self::DualDepth { .. }
+        )
+    }
+
+    /// The key used on the command line: `none`, `constant`, `slope`, `second-depth`, `midpoint`,
+    /// `dual-depth`.
+    #[must_use]
+    pub fn key(&self) -> &'static str {
+        match self {
+            Self::None => "none",
+            Self::Constant { .. } => "constant",
+            Self::SlopeScaled { .. } => "slope",
+            Self::SecondDepth => "second-depth",
+            Self::Midpoint => "midpoint",
+            Self::DualDepth { .. } => "dual-depth",
+        }
+    }
+}
+
+/// How many texels a lookup reads, and how it combines them.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Filter {
+    /// The one texel the point falls in.
+    Nearest,
+    /// Percentage-closer filtering over the `size × size` texels centred on the point (Reeves et
+    /// al. 1987), each tested with the bias: the lit fraction.
+    Pcf {
+        /// Side of the kernel, in texels (≥ 1).
+        size: u32,
+    },
+    /// PCF over `taps` points of a jittered disk of `radius` texels: tap `k` at radius
+    /// `radius·√((k + u)/taps)` and angle `2π(k·φ_g + v)` (φ_g the golden ratio's fraction), with
+    /// `u, v ∈ [0, 1)` drawn from SplitMix64 seeded by `seed` — the same taps for every lookup, so
+    /// the result is deterministic.
+    Disk {
+        /// Number of taps (≥ 1).
+        taps: u32,
+        /// Disk radius in texels.
+        radius: f64,
+        /// The taps' seed.
+        seed: u64,
+    },
+    /// Variance shadow maps (CAD eq. 2 on shifted moments, formulas.md §4.2, §9.4): the first two
+    /// moments of the `size × size` texels' depths about the centre texel's depth, and the
+    /// Chebyshev bound, with the variance raised to at least `min_variance`. No bias is applied (the
+    /// variance is VSM's bias).
+    Vsm {
+        /// Side of the moment kernel, in texels (≥ 1).
+        size: u32,
+        /// The variance floor.
+        min_variance: f64,
+    },
+}
+
+/// A receiver's depth slope per texel is capped here: a surface seen edge-on by the light would
+/// otherwise get an unbounded bias.
+const MAX_SLOPE: f64 = 1.0;
+/// Step along the surface for the slope, relative to the point's distance from the origin (or 1).
+const SLOPE_STEP: f64 = 1e-5;
+/// 2⁶⁴/φ, SplitMix64's increment.
+const SPLITMIX_GAMMA: u64 = 0x9E37_79B9_7F4A_7C15;
+/// The fraction of the golden ratio, for the disk's angles.
+const GOLDEN_FRACTION: f64 = 0.618_033_988_749_894_9;
+
+/// A bias and a filter: one way of reading shadow maps.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Lookup {
+    /// The bias.
+    pub bias: Bias,
+    /// The filter.
+    pub filter: Filter,
+    /// The disk's taps in texels, precomputed from the seed.
+    taps: Vec<DVec2>,
+}
+
+impl Lookup {
+    /// A lookup with this bias and filter.
+    #[must_use]
+    pub fn new(bias: Bias, filter: Filter) -> Self {
+        let taps = match filter {
+            Filter::Disk { taps, radius, seed } => disk_taps(taps, radius, seed),
+            _ => Vec::new(),
+        };
+        Self { bias, filter, taps }
+    }
+
+    /// How lit the surface point `world` with unit normal `normal` is by `map`'s light: 1 lit, 0 in
+    /// shadow, fractions from filters. Points the map does not cover are lit.
+    #[must_use]
+    pub fn lit_fraction(&self, map: &ShadowMap, world: DVec3, normal: DVec3) -> f64 {
+        let Some(window) = map.setup.mapping.window(world) else {
+            return 1.0;
+        };
+        let side = f64::from(map.resolution);
+        let centre = DVec2::new(window.x * side, window.y * side);
+        let receiver = window.z;
+        match self.filter {
+            Filter::Nearest => self.test(map, centre, receiver, world, normal),
+            Filter::Pcf { size } => {
+                let half = 0.5 * f64::from(size.saturating_sub(1));
+                let mut lit = 0.0;
+                for b in 0..size {
+                    for a in 0..size {
+                        let offset = DVec2::new(f64::from(a) - half, f64::from(b) - half);
+                        lit += self.test(map, centre + offset, receiver, world, normal);
+                    }
+                }
+                lit / f64::from(size * size)
+            }
+            Filter::Disk { .. } => {
+                let lit: f64 = self
+                    .taps
+                    .iter()
+                    .map(|tap| self.test(map, centre + *tap, receiver, world, normal))
+                    .sum();
+                lit / self.taps.len() as f64
+            }
+            Filter::Vsm { size, min_variance } => vsm(map, centre, receiver, size, min_variance),
+        }
+    }
+
+    /// 1 if the receiver at texel-space position `at` is lit through that texel, else 0.
+    fn test(&self, map: &ShadowMap, at: DVec2, receiver: f64, world: DVec3, normal: DVec3) -> f64 {
+        let Some((i, j)) = texel(map, at) else {
+            return 1.0;
+        };
+        let z1 = map.depth(i, j);
+        let second = || {
+            let z2 = map.second_depth(i, j).unwrap_or(1.0);
+            // A second depth at the far plane means no second surface.
+            if z2 >= 1.0 { f64::INFINITY } else { z2.max(z1) }
+        };
+        let limit = match self.bias {
+            Bias::None => z1,
+            Bias::Constant { offset } => z1 + offset,
+            Bias::SlopeScaled { constant, slope } => {
+                z1 + constant + slope * depth_slope(map, world, normal)
+            }
+            Bias::SecondDepth => table_1(DepthBias::SecondDepth, z1, second()),
+            Bias::Midpoint => table_1(DepthBias::Midpoint, z1, second()),
+            Bias::DualDepth { max_bias } => {
+                table_1(DepthBias::DualDepth { max_bias }, z1, second())
+            }
+        };
+        if receiver <= limit { 1.0 } else { 0.0 }
+    }
+}
+
+/// CAD eq. 1 through `shadowlab-params`; an empty texel (z1 at the far plane) lights everything.
+fn table_1(bias: DepthBias, z1: f64, z2: f64) -> f64 {
+    bias.z_map(z1, z2).unwrap_or(f64::INFINITY)
+}
+
+/// The texel holding texel-space position `at` (`None` off the map).
+fn texel(map: &ShadowMap, at: DVec2) -> Option<(u32, u32)> {
+    let side = f64::from(map.resolution);
+    map.texel_of(DVec3::new(at.x / side, at.y / side, 0.0))
+}
+
+/// The receiver's window-depth slope per texel: the larger of `|∂z/∂x|`, `|∂z/∂y|` of the surface
+/// plane through `world` with `normal`, seen through the map; capped at [`MAX_SLOPE`].
+fn depth_slope(map: &ShadowMap, world: DVec3, normal: DVec3) -> f64 {
+    let (t1, t2) = normal.any_orthonormal_pair();
+    let step = SLOPE_STEP * world.length().max(1.0);
+    let side = f64::from(map.resolution);
+    let at = |p: DVec3| {
+        map.setup
+            .mapping
+            .window(p)
+            .map(|w| DVec3::new(w.x * side, w.y * side, w.z))
+    };
+    let (Some(p0), Some(p1), Some(p2)) = (at(world), at(world + t1 * step), at(world + t2 * step))
+    else {
+        return MAX_SLOPE;
+    };
+    let (d1, d2) = (p1 - p0, p2 - p0);
+    let jacobian = DMat2::from_cols(DVec2::new(d1.x, d1.y), DVec2::new(d2.x, d2.y));
+    let determinant = jacobian.determinant();
+    if determinant.abs() <= f64::EPSILON * d1.truncate().length() * d2.truncate().length() {
+        return MAX_SLOPE;
+    }
+    // (∂z/∂x, ∂z/∂y) J = (dz1, dz2).
+    let gradient = jacobian.transpose().inverse() * DVec2::new(d1.z, d2.z);
+    gradient.x.abs().max(gradient.y.abs()).min(MAX_SLOPE)
+}
+
+/// VSM's lit fraction from the moments of the `size × size` texels around `centre`.
+fn vsm(map: &ShadowMap, centre: DVec2, receiver: f64, size: u32, min_variance: f64) -> f64 {
+    let Some((ci, cj)) = texel(map, centre) else {
+        return 1.0;
+    };
+    let half = i64::from(size.saturating_sub(1) / 2);
+    let side = i64::from(map.resolution);
+    let mut depths = Vec::with_capacity((size * size) as usize);
+    for dj in -half..=half {
+        for di in -half..=half {
+            let (i, j) = (i64::from(ci) + di, i64::from(cj) + dj);
+            if (0..side).contains(&i) && (0..side).contains(&j) {
+                #[expect(
+                    clippy::cast_possible_truncation,
+                    clippy::cast_sign_loss,
+                    reason = "inside the map"
+                )]
+                depths.push(map.depth(i as u32, j as u32));
+            }
+        }
+    }
+    let reference = map.depth(ci, cj);
+    ShiftedMoments::from_depths(reference, &depths)
+        .and_then(|m| m.lit_fraction(receiver, min_variance))
+        .unwrap_or(1.0)
+}
+
+/// The disk's taps (see [`Filter::Disk`]).
+fn disk_taps(taps: u32, radius: f64, seed: u64) -> Vec<DVec2> {
+    let mut state = seed;
+    let mut unit = || {
+        // SplitMix64 (Steele, Lea & Flood 2014), top 53 bits as a fraction.
+        state = state.wrapping_add(SPLITMIX_GAMMA);
+        let mut z = state;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^= z >> 31;
+        #[expect(clippy::cast_precision_loss, reason = "53 bits, exact in f64")]
+        let fraction = (z >> 11) as f64 / (1u64 << 53) as f64;
+        fraction
+    };
+    (0..taps)
+        .map(|k| {
+            let (u, v) = (unit(), unit());
+            let r = radius * ((f64::from(k) + u) / f64::from(taps)).sqrt();
+            let angle = TAU * (f64::from(k) * GOLDEN_FRACTION + v);
+            DVec2::new(r * angle.cos(), r * angle.sin())
+        })
+        .collect()
+}

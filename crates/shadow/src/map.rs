@@ -1,0 +1,110 @@
+//! Rendering a planned shadow map.
+
+use glam::DVec3;
+use shadowlab_raster::{
+    DepthFormat, DepthPairTarget, DepthTarget, RasterOptions, Rasterizer, Triangles,
+};
+
+use crate::error::ShadowError;
+use crate::setup::{LightSetup, ShadowMapping};
+
+/// What to render.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct MapOptions {
+    /// Side of the square map, in texels.
+    pub resolution: u32,
+    /// How depth is stored (an accuracy knob: see `shadowlab_raster::DepthFormat`).
+    pub format: DepthFormat,
+    /// Also keep the second-nearest depth (for the second-depth, midpoint and dual-depth biases).
+    pub second_depth: bool,
+}
+
+/// A rendered shadow map: window depths (GL's `[0, 1]`, 1 where nothing is stored) of the nearest
+/// and, if asked for, second-nearest surface per texel, row-major with row 0 at the bottom.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ShadowMap {
+    /// How it was planned.
+    pub setup: LightSetup,
+    /// Side in texels.
+    pub resolution: u32,
+    /// The depth format the values were stored in (and decoded from).
+    pub format: DepthFormat,
+    /// Nearest depth per texel.
+    pub nearest: Vec<f64>,
+    /// Second-nearest depth per texel, if rendered.
+    pub second: Option<Vec<f64>>,
+}
+
+impl ShadowMap {
+    /// Renders `setup`'s map of `mesh` with the rasterizer.
+    ///
+    /// # Errors
+    /// [`ShadowError::NotDefined`] for the logarithmic map, which is not projective and is made by
+    /// [`crate::logarithmic`] ray casting instead; the rasterizer's errors (bad indices, sizes) as
+    /// [`ShadowError::Raster`].
+    pub fn render(
+        setup: &LightSetup,
+        mesh: Triangles<'_>,
+        options: MapOptions,
+    ) -> Result<Self, ShadowError> {
+        let ShadowMapping::Projective { .. } = setup.mapping else {
+            return Err(ShadowError::NotDefined {
+                technique: setup.technique.key(),
+                reason: "the logarithmic map is not projective: cast rays instead".into(),
+            });
+        };
+        let clip_from_world = setup
+            .mapping
+            .clip_from_world()
+            .expect("a projective mapping");
+        let size = options.resolution;
+        let mut raster = Rasterizer::new(RasterOptions::default());
+        let (nearest, second) = if options.second_depth {
+            let mut target = DepthPairTarget::new(size, size, options.format)?;
+            raster.draw_depth_pair(&mut target, mesh, &clip_from_world)?;
+            (target.nearest(), Some(target.second()))
+        } else {
+            let mut target = DepthTarget::new(size, size, options.format)?;
+            raster.draw_depth(&mut target, mesh, &clip_from_world)?;
+            (target.depths(), None)
+        };
+        Ok(Self {
+            setup: setup.clone(),
+            resolution: size,
+            format: options.format,
+            nearest,
+            second,
+        })
+    }
+
+    /// The texel `(i, j)` (column, row from the bottom) holding window point `(x, y)`, if it lies on
+    /// the map.
+    #[must_use]
+    pub fn texel_of(&self, window: DVec3) -> Option<(u32, u32)> {
+        let side = f64::from(self.resolution);
+        let (i, j) = ((window.x * side).floor(), (window.y * side).floor());
+        #[expect(
+            clippy::cast_possible_truncation,
+            clippy::cast_sign_loss,
+            reason = "checked to lie in [0, resolution)"
+        )]
+        let texel = (i >= 0.0 && j >= 0.0 && i < side && j < side).then_some((i as u32, j as u32));
+        texel
+    }
+
+    /// The stored nearest depth of texel `(i, j)`.
+    #[must_use]
+    pub fn depth(&self, i: u32, j: u32) -> f64 {
+        self.nearest[self.index(i, j)]
+    }
+
+    /// The stored second-nearest depth of texel `(i, j)` (`None` if not rendered).
+    #[must_use]
+    pub fn second_depth(&self, i: u32, j: u32) -> Option<f64> {
+        self.second.as_ref().map(|s| s[self.index(i, j)])
+    }
+
+    fn index(&self, i: u32, j: u32) -> usize {
+        j as usize * self.resolution as usize + i as usize
+    }
+}
