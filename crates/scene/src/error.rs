@@ -2,11 +2,16 @@
 //!
 //! [`SceneError`] is returned by every constructor and loader of this crate. Mesh data errors name
 //! the offending vertex, triangle or parameter; OBJ errors name the file and the line
-//! (`path:line: problem`), the problem itself being an [`ObjProblem`].
+//! (`path:line: problem`), the problem itself being an [`ObjProblem`]; scene-file errors name the
+//! file and the field (`path: camera.near (5) must be below camera.far (1)`), the problem being a
+//! [`SceneFileProblem`], or the file, line and column of a TOML error.
 
 use std::fmt;
 use std::io;
 use std::path::PathBuf;
+
+use glam::DVec3;
+use shadowlab_hull::HullError;
 
 /// An error from a constructor, a loader or an operation of this crate: bad input, named.
 #[non_exhaustive]
@@ -119,6 +124,58 @@ pub enum SceneError {
         /// tobj's message.
         message: String,
     },
+    /// A scene file that is not valid TOML, or whose TOML does not fit the scene format: a syntax
+    /// error, an unknown field, a value of the wrong type (including a number out of its type's
+    /// range, e.g. a negative image size), an unknown shape or light kind, a repeated key.
+    SceneToml {
+        /// The scene file.
+        path: PathBuf,
+        /// The line and column (both from 1, columns counting characters) where toml located the
+        /// error, if it did.
+        position: Option<(usize, usize)>,
+        /// The field at that position (e.g. `mesh[1].shape`), if it is inside one.
+        field: Option<String>,
+        /// toml's message, e.g. ``unknown field `fovy`, expected one of …``.
+        message: String,
+    },
+    /// A field of a scene file whose value is out of range or inconsistent with another.
+    SceneFile {
+        /// The scene file.
+        path: PathBuf,
+        /// The field, as a path into the file: `camera.near`, `light[0].direction`,
+        /// `mesh[2].size[1]` (arrays of tables and values are indexed from 0). A value that the
+        /// file does not give but that is derived from other values or from the scene is named
+        /// `the default camera.far`.
+        field: String,
+        /// What is wrong with it.
+        problem: SceneFileProblem,
+    },
+    /// A mesh entry of a scene file that could not be built: its OBJ file is missing or malformed,
+    /// its shape has more triangles than [`crate::procedural::MAX_TRIANGLES`] or breaks a rule
+    /// between parameters, or its transform overflows.
+    SceneMesh {
+        /// The scene file.
+        path: PathBuf,
+        /// The entry or its field, e.g. `mesh[0].obj`, `mesh[3]`.
+        field: String,
+        /// The error from the OBJ loader, the procedural shape or the transform.
+        source: Box<SceneError>,
+    },
+    /// A camera or spot light of a scene file that `shadowlab-hull` rejected after this crate's
+    /// checks passed: only for values that overflow (e.g. positions near ±1e308).
+    SceneHull {
+        /// The scene file.
+        path: PathBuf,
+        /// The camera or light, e.g. `camera`, `light[1]`.
+        field: String,
+        /// hull's error.
+        source: HullError,
+    },
+    /// A built-in scene name that does not exist.
+    UnknownScene {
+        /// The name asked for.
+        name: String,
+    },
 }
 
 impl fmt::Display for SceneError {
@@ -184,6 +241,41 @@ impl fmt::Display for SceneError {
                  it; this is a bug in shadowlab-scene, please report it with the file",
                 path.display()
             ),
+            Self::SceneToml {
+                path,
+                position,
+                field,
+                message,
+            } => {
+                write!(f, "{}", path.display())?;
+                if let Some((line, column)) = position {
+                    write!(f, ":{line}:{column}")?;
+                }
+                if let Some(field) = field {
+                    write!(f, ": {field}")?;
+                }
+                write!(f, ": {message}")
+            }
+            Self::SceneFile {
+                path,
+                field,
+                problem,
+            } => write!(f, "{}: {field} {problem}", path.display()),
+            Self::SceneMesh {
+                path,
+                field,
+                source,
+            } => write!(f, "{}: {field}: {source}", path.display()),
+            Self::SceneHull {
+                path,
+                field,
+                source,
+            } => write!(f, "{}: {field}: {source}", path.display()),
+            Self::UnknownScene { name } => write!(
+                f,
+                "there is no built-in scene `{name}`; the built-in scenes are {}",
+                crate::BUILTIN_SCENES.join(", ")
+            ),
         }
     }
 }
@@ -192,7 +284,121 @@ impl std::error::Error for SceneError {
     fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
         match self {
             Self::Io { source, .. } => Some(source),
+            Self::SceneMesh { source, .. } => Some(source.as_ref()),
+            Self::SceneHull { source, .. } => Some(source),
             _ => None,
+        }
+    }
+}
+
+/// What is wrong with one field of a scene file. Displayed after the field's name, so that
+/// [`SceneError::SceneFile`] reads `path: camera.fov (200) must be in (0, 180) degrees`.
+#[non_exhaustive]
+#[derive(Clone, Debug, PartialEq)]
+pub enum SceneFileProblem {
+    /// A number that must be finite is NaN or infinite (TOML has `nan` and `inf` literals).
+    NotFinite {
+        /// The value given.
+        value: f64,
+    },
+    /// A number outside its range.
+    OutOfRange {
+        /// The value given (integers are converted exactly).
+        value: f64,
+        /// The rule it breaks, e.g. `"> 0"`, `"in (0, 180) degrees"`, `"at least 3"`.
+        requirement: &'static str,
+    },
+    /// A number that must be below another one (`near` and `far`) is not.
+    NotBelow {
+        /// The value given.
+        value: f64,
+        /// The other field, e.g. `camera.far` or `the default camera.far`.
+        other: String,
+        /// The other field's value.
+        other_value: f64,
+    },
+    /// A direction that is the zero vector.
+    ZeroVector {
+        /// The value given.
+        value: DVec3,
+    },
+    /// An up vector parallel to the direction it must be orthogonalised against.
+    Parallel {
+        /// The value given.
+        value: DVec3,
+        /// The other direction, e.g. `the view direction`.
+        other: &'static str,
+        /// Its value.
+        other_value: DVec3,
+    },
+    /// A point that coincides with another, so that no direction joins them (a target at the
+    /// position).
+    Coincident {
+        /// The value given.
+        value: DVec3,
+        /// The other field, e.g. `camera.position`.
+        other: String,
+    },
+    /// Two fields that exclude each other are both given.
+    Conflict {
+        /// The other field, e.g. `camera.direction`.
+        other: String,
+    },
+    /// Something required is missing.
+    Missing {
+        /// What is needed, e.g. ``"one of `obj` and `shape`"``.
+        needs: &'static str,
+    },
+    /// A field that the entry's kind or shape does not take (a spot light's `cone` on a
+    /// directional light, a sphere's `radius` on a box).
+    NotApplicable {
+        /// What the entry is, e.g. `a directional light`, `shape "box"`.
+        to: String,
+    },
+    /// An array with the wrong number of values.
+    WrongLength {
+        /// The values given.
+        found: usize,
+        /// The values expected.
+        expected: usize,
+    },
+    /// A value the file does not give and whose default cannot be derived from the scene.
+    NoDefault {
+        /// Why, e.g. `"the scene lies behind the camera"`.
+        reason: &'static str,
+    },
+}
+
+impl fmt::Display for SceneFileProblem {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::NotFinite { value } => write!(f, "({value}) must be finite"),
+            Self::OutOfRange { value, requirement } => {
+                write!(f, "({value}) must be {requirement}")
+            }
+            Self::NotBelow {
+                value,
+                other,
+                other_value,
+            } => write!(f, "({value}) must be below {other} ({other_value})"),
+            Self::ZeroVector { value } => write!(f, "{value} has no direction"),
+            Self::Parallel {
+                value,
+                other,
+                other_value,
+            } => write!(f, "{value} is parallel to {other} {other_value}"),
+            Self::Coincident { value, other } => write!(f, "{value} coincides with {other}"),
+            Self::Conflict { other } => {
+                write!(f, "and {other} exclude each other: give one of them")
+            }
+            Self::Missing { needs } => write!(f, "needs {needs}"),
+            Self::NotApplicable { to } => write!(f, "does not apply to {to}"),
+            Self::WrongLength { found, expected } => {
+                write!(f, "has {found} values; it takes {expected}")
+            }
+            Self::NoDefault { reason } => {
+                write!(f, "has no default: {reason}; give it in the file")
+            }
         }
     }
 }

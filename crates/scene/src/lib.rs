@@ -20,6 +20,16 @@
 //! # Ok::<(), shadowlab_scene::SceneError>(())
 //! ```
 //!
+//! ```
+//! use shadowlab_scene::{SceneLight, builtin_scene, DEFAULT_SCENE};
+//!
+//! let scene = builtin_scene(DEFAULT_SCENE)?;
+//! assert_eq!(scene.camera.projection.far(), 400.0);
+//! assert!(matches!(scene.lights[0], SceneLight::Directional { .. }));
+//! assert!(scene.bounds().contains(scene.camera.pose.eye()));
+//! # Ok::<(), shadowlab_scene::SceneError>(())
+//! ```
+//!
 //! # Conventions
 //! - **Space:** right-handed, **y up** (as in `shadowlab-hull`); procedural shapes are centred on
 //!   the origin. Units are whatever the caller's are.
@@ -32,9 +42,14 @@
 //!   positions and out-of-range indices are errors.
 //! - **Groups:** every triangle has a group id indexing [`Mesh::group_names`]; [`Mesh::merged`]
 //!   keeps the parts apart by offsetting ids.
-//! - **Errors** are [`SceneError`] values naming the parameter, vertex, triangle, or file and line;
-//!   nothing panics on bad input except [`Mesh::transformed`] and [`Mesh::merged`], the documented
-//!   panicking forms of [`Mesh::try_transformed`] and [`Mesh::try_merged`].
+//! - **Lights:** a scene file gives the direction a directional light **travels**;
+//!   [`SceneLight::Directional`] holds hull's `to_light`, its negation, normalised. Scene-file
+//!   angles are degrees; [`Scene`] holds radians.
+//! - **Errors** are [`SceneError`] values naming the parameter, vertex, triangle, file and line,
+//!   or scene-file field; nothing panics on bad input except [`Mesh::transformed`] and
+//!   [`Mesh::merged`], the documented panicking forms of [`Mesh::try_transformed`] and
+//!   [`Mesh::try_merged`], and [`SceneLight::light`] on a hand-built zero or non-finite
+//!   `to_light`.
 //! - **Determinism:** no randomness and no hash-order dependence; the same input gives
 //!   bit-identical meshes.
 
@@ -42,15 +57,21 @@
 
 pub mod benchmark;
 mod bounds;
+mod builtin;
 mod error;
 mod mesh;
 mod normals;
 mod obj;
 mod obj_check;
 pub mod procedural;
+mod scene;
+pub mod scene_file;
 
 pub use bounds::Bounds;
-pub use error::{ObjElement, ObjProblem, SceneError};
+pub use builtin::{BUILTIN_SCENES, DEFAULT_SCENE, builtin_scene, builtin_scene_text};
+pub use error::{ObjElement, ObjProblem, SceneError, SceneFileProblem};
 pub use mesh::{DEFAULT_GROUP_NAME, Mesh};
 pub use normals::FALLBACK_NORMAL;
-pub use obj::load_obj;
+pub use obj::{load_obj, parse_obj};
+pub use scene::{Camera, Scene, SceneLight, ShadowSettings};
+pub use scene_file::{load_scene, parse_scene};

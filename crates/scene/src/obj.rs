@@ -40,18 +40,32 @@ pub fn load_obj(path: &Path) -> Result<Mesh, SceneError> {
         path: path.to_owned(),
         source,
     })?;
-    let obj_error = |line, problem| SceneError::Obj {
-        path: path.to_owned(),
-        line,
-        problem,
-    };
     let text = std::str::from_utf8(&bytes).map_err(|error| {
         let line = 1 + bytes[..error.valid_up_to()]
             .iter()
             .filter(|&&b| b == b'\n')
             .count();
-        obj_error(line, ObjProblem::NotUtf8)
+        SceneError::Obj {
+            path: path.to_owned(),
+            line,
+            problem: ObjProblem::NotUtf8,
+        }
     })?;
+    parse_obj(text, path)
+}
+
+/// Reads OBJ text as one mesh, exactly as [`load_obj`] reads a file holding it; `path` only names
+/// the text in errors (it is not opened). This is how the built-in scenes load the meshes embedded
+/// in the binary.
+///
+/// # Errors
+/// As [`load_obj`], except [`SceneError::Io`] and the UTF-8 check, which concern reading a file.
+pub fn parse_obj(text: &str, path: &Path) -> Result<Mesh, SceneError> {
+    let obj_error = |line, problem| SceneError::Obj {
+        path: path.to_owned(),
+        line,
+        problem,
+    };
     // A byte-order mark would otherwise hide the first statement's keyword.
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let summary = obj_check::check(text).map_err(|(line, problem)| obj_error(line, problem))?;

@@ -1,16 +1,12 @@
 //! The meshes committed in data/meshes load with their documented counts (data/meshes/README.md),
 //! finite bounds and unit normals; the two bunnies are closed and wound outward.
 
-use std::path::PathBuf;
-
 use shadowlab_scene::{Mesh, load_obj};
 
-use crate::support::{assert_unit_normals, first_open_edge};
+use crate::support::{assert_unit_normals, data_path, first_open_edge};
 
 fn load(name: &str) -> Mesh {
-    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../../data/meshes")
-        .join(name);
+    let path = data_path(&format!("meshes/{name}"));
     load_obj(&path).unwrap_or_else(|error| panic!("{error}"))
 }
 

@@ -213,3 +213,160 @@ proptest! {
         }
     }
 }
+
+/// Values that may replace a number of a scene file: out of range, not finite, huge, tiny, of the
+/// wrong type, or plain.
+const SCENE_VALUES: [&str; 16] = [
+    "0",
+    "-1",
+    "2",
+    "0.5",
+    "90",
+    "180",
+    "nan",
+    "-inf",
+    "1e300",
+    "1e-300",
+    "-0.0",
+    "4294967295",
+    "4294967296",
+    "\"x\"",
+    "[0, 0, 0]",
+    "true",
+];
+
+/// Lines that may be inserted into a scene file: headers, and fields that may or may not belong
+/// where they land.
+const SCENE_LINES: [&str; 20] = [
+    "[[mesh]]",
+    "[[light]]",
+    "[camera]",
+    "[shadow]",
+    "kind = \"spot\"",
+    "shape = \"lattice\"",
+    "shape = \"sphere\"",
+    "obj = \"missing.obj\"",
+    "direction = [0, -1, 0]",
+    "up = [0, 1, 0]",
+    "target = [0, 0, 0]",
+    "position = [0, 0, 0]",
+    "copies = 3",
+    "step = [1, 0, 0]",
+    "near = 5",
+    "far = 2",
+    "cone = 200",
+    "radius = 1",
+    "scale = -1",
+    "technique = \"lispsm\"",
+];
+
+/// One edit of a scene file's text; positions are fractions of the length.
+#[derive(Clone, Debug)]
+enum Edit {
+    /// Delete 1 to 6 characters.
+    Delete(f64, usize),
+    /// Replace the number (with its sign) at or after a position by one of [`SCENE_VALUES`].
+    ReplaceNumber(f64, usize),
+    /// Insert one of [`SCENE_LINES`] before a line.
+    InsertLine(f64, usize),
+    /// Duplicate (true) or delete a line.
+    Line(f64, bool),
+}
+
+fn edit() -> impl Strategy<Value = Edit> {
+    let at = || 0.0..1.0_f64;
+    prop_oneof![
+        1 => (at(), 1..=6_usize).prop_map(|(at, n)| Edit::Delete(at, n)),
+        4 => (at(), 0..SCENE_VALUES.len()).prop_map(|(at, v)| Edit::ReplaceNumber(at, v)),
+        2 => (at(), 0..SCENE_LINES.len()).prop_map(|(at, l)| Edit::InsertLine(at, l)),
+        1 => (at(), any::<bool>()).prop_map(|(at, duplicate)| Edit::Line(at, duplicate)),
+    ]
+}
+
+/// `text` with `edit` applied. Built-in files are ASCII, so byte positions are character
+/// positions.
+fn apply(text: &str, edit: &Edit) -> String {
+    #[expect(
+        clippy::cast_possible_truncation,
+        clippy::cast_sign_loss,
+        reason = "a fraction in [0, 1) of a length that fits usize"
+    )]
+    let position = |at: f64, len: usize| ((at * len as f64) as usize).min(len);
+    let mut text = text.to_owned();
+    let mut lines: Vec<&str> = text.lines().collect();
+    let line = |at: f64| position(at, lines.len()).min(lines.len().saturating_sub(1));
+    match *edit {
+        Edit::Delete(at, n) => {
+            let start = position(at, text.len());
+            text.replace_range(start..(start + n).min(text.len()), "");
+        }
+        Edit::ReplaceNumber(at, value) => {
+            let from = position(at, text.len());
+            if let Some(offset) = text[from..].find(|c: char| c.is_ascii_digit()) {
+                let digits = from + offset;
+                let start = if text[..digits].ends_with('-') {
+                    digits - 1
+                } else {
+                    digits
+                };
+                let end = text[digits..]
+                    .find(|c: char| !(c.is_ascii_digit() || c == '.'))
+                    .map_or(text.len(), |length| digits + length);
+                text.replace_range(start..end, SCENE_VALUES[value]);
+            }
+        }
+        Edit::InsertLine(at, inserted) => {
+            let index = line(at);
+            lines.insert(index, SCENE_LINES[inserted]);
+            text = lines.join("\n");
+        }
+        Edit::Line(at, duplicate) => {
+            let index = line(at);
+            if duplicate {
+                lines.insert(index, lines[index]);
+            } else {
+                lines.remove(index);
+            }
+            text = lines.join("\n");
+        }
+    }
+    text
+}
+
+proptest! {
+    #![proptest_config(config(256))]
+
+    /// Mangled versions of the built-in scene files never panic: each is a scene whose camera and
+    /// lights are valid, or an error whose message names the file.
+    #[test]
+    fn mangled_scene_files_never_panic(
+        scene in 0..shadowlab_scene::BUILTIN_SCENES.len(),
+        edits in prop::collection::vec(edit(), 1..4),
+    ) {
+        let name = shadowlab_scene::BUILTIN_SCENES[scene];
+        let path = crate::support::data_path(&format!("scenes/{name}.toml"));
+        let text = edits.iter().fold(
+            shadowlab_scene::builtin_scene_text(name).unwrap().to_owned(),
+            |text, edit| apply(&text, edit),
+        );
+        match shadowlab_scene::parse_scene(&text, &path) {
+            Ok(scene) => {
+                prop_assert!(!scene.lights.is_empty());
+                let projection = scene.camera.projection;
+                prop_assert!(0.0 < projection.near() && projection.near() < projection.far());
+                prop_assert!(scene.camera.width > 0 && scene.camera.height > 0);
+                prop_assert!(scene.bounds().min.is_finite() && scene.bounds().max.is_finite());
+                for light in &scene.lights {
+                    let _ = light.light();
+                }
+            }
+            Err(error) => {
+                let message = error.to_string();
+                prop_assert!(
+                    message.starts_with(&path.display().to_string()),
+                    "{} does not name the file", message
+                );
+            }
+        }
+    }
+}

@@ -1,7 +1,7 @@
 //! Shared test helpers.
 
 use std::collections::BTreeMap;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use glam::DVec3;
 use proptest::test_runner::{Config, RngAlgorithm, RngSeed};
@@ -22,7 +22,7 @@ pub(crate) fn config(cases: u32) -> Config {
     }
 }
 
-/// A temporary directory holding OBJ files written by a test.
+/// A temporary directory holding the OBJ and scene files written by a test.
 pub(crate) struct ObjDir(tempfile::TempDir);
 
 impl ObjDir {
@@ -30,12 +30,24 @@ impl ObjDir {
         Self(tempfile::tempdir().expect("a temporary directory"))
     }
 
+    /// The directory.
+    pub(crate) fn path(&self) -> &Path {
+        self.0.path()
+    }
+
     /// Writes `text` to `name` in the directory and returns its path.
     pub(crate) fn write(&self, name: &str, text: &str) -> PathBuf {
         let path = self.0.path().join(name);
-        std::fs::write(&path, text).expect("write a test OBJ file");
+        std::fs::write(&path, text).expect("write a test file");
         path
     }
+}
+
+/// The path of a file of the repository's `data/` directory, e.g. `data_path("scenes/bunny.toml")`.
+pub(crate) fn data_path(relative: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../data")
+        .join(relative)
 }
 
 /// Identifies a position by its exact bits, so that vertices split for their normals compare equal.

@@ -1,0 +1,186 @@
+//! Checks of single fields, each naming the field by its path in the file.
+
+use std::path::Path;
+
+use glam::DVec3;
+use shadowlab_hull::HullError;
+
+use crate::error::{SceneError, SceneFileProblem};
+use crate::normals;
+
+/// The file being read, for naming it in errors.
+#[derive(Clone, Copy)]
+pub(super) struct Checker<'a> {
+    path: &'a Path,
+}
+
+/// `prefix.name`, the path of a field of a table.
+pub(super) fn field(prefix: &str, name: &str) -> String {
+    format!("{prefix}.{name}")
+}
+
+/// The name of a field in an error: its path if the file gives it, `the default <path>` if its
+/// value was derived.
+pub(super) fn named(path: String, given: bool) -> String {
+    if given {
+        path
+    } else {
+        format!("the default {path}")
+    }
+}
+
+impl<'a> Checker<'a> {
+    pub(super) fn new(path: &'a Path) -> Self {
+        Self { path }
+    }
+
+    /// A [`SceneError::SceneFile`] for `field`.
+    pub(super) fn error(&self, field: impl Into<String>, problem: SceneFileProblem) -> SceneError {
+        SceneError::SceneFile {
+            path: self.path.to_owned(),
+            field: field.into(),
+            problem,
+        }
+    }
+
+    /// A [`SceneError::SceneMesh`] wrapping the error of building `field`.
+    pub(super) fn mesh_error(&self, field: impl Into<String>, source: SceneError) -> SceneError {
+        SceneError::SceneMesh {
+            path: self.path.to_owned(),
+            field: field.into(),
+            source: Box::new(source),
+        }
+    }
+
+    /// A [`SceneError::SceneHull`] wrapping hull's error about `field`.
+    pub(super) fn hull_error(&self, field: impl Into<String>, source: HullError) -> SceneError {
+        SceneError::SceneHull {
+            path: self.path.to_owned(),
+            field: field.into(),
+            source,
+        }
+    }
+
+    /// `value` if it is finite.
+    pub(super) fn finite(&self, field: &str, value: f64) -> Result<f64, SceneError> {
+        if value.is_finite() {
+            Ok(value)
+        } else {
+            Err(self.error(field, SceneFileProblem::NotFinite { value }))
+        }
+    }
+
+    /// `value` if it is finite and > 0.
+    pub(super) fn positive(&self, field: &str, value: f64) -> Result<f64, SceneError> {
+        if self.finite(field, value)? > 0.0 {
+            Ok(value)
+        } else {
+            Err(self.error(
+                field,
+                SceneFileProblem::OutOfRange {
+                    value,
+                    requirement: "> 0",
+                },
+            ))
+        }
+    }
+
+    /// `value` if it is at least `minimum`; `requirement` says so, e.g. `"at least 3"`.
+    pub(super) fn at_least(
+        &self,
+        field: &str,
+        value: u32,
+        minimum: u32,
+        requirement: &'static str,
+    ) -> Result<u32, SceneError> {
+        if value >= minimum {
+            Ok(value)
+        } else {
+            Err(self.error(
+                field,
+                SceneFileProblem::OutOfRange {
+                    value: f64::from(value),
+                    requirement,
+                },
+            ))
+        }
+    }
+
+    /// A full angle in degrees (a field of view, a cone) strictly between 0 and 180, in radians.
+    pub(super) fn angle(&self, field: &str, degrees: f64) -> Result<f64, SceneError> {
+        if self.finite(field, degrees)? > 0.0 && degrees < 180.0 {
+            Ok(degrees.to_radians())
+        } else {
+            Err(self.error(
+                field,
+                SceneFileProblem::OutOfRange {
+                    value: degrees,
+                    requirement: "in (0, 180) degrees",
+                },
+            ))
+        }
+    }
+
+    /// The vector `values` if every coordinate is finite; a bad one is named `field[i]`.
+    pub(super) fn vector(&self, field: &str, values: [f64; 3]) -> Result<DVec3, SceneError> {
+        for (index, &value) in values.iter().enumerate() {
+            self.finite(&format!("{field}[{index}]"), value)?;
+        }
+        Ok(DVec3::from_array(values))
+    }
+
+    /// The vector `values` normalised, if it is finite and not zero.
+    pub(super) fn direction(&self, field: &str, values: [f64; 3]) -> Result<DVec3, SceneError> {
+        let value = self.vector(field, values)?;
+        normals::unit(value)
+            .ok_or_else(|| self.error(field, SceneFileProblem::ZeroVector { value }))
+    }
+
+    /// `value` if it is finite and ≥ 0.
+    pub(super) fn non_negative(&self, field: &str, value: f64) -> Result<f64, SceneError> {
+        if self.finite(field, value)? >= 0.0 {
+            Ok(value)
+        } else {
+            Err(self.error(
+                field,
+                SceneFileProblem::OutOfRange {
+                    value,
+                    requirement: ">= 0",
+                },
+            ))
+        }
+    }
+
+    /// `value` if it is finite and not 0.
+    pub(super) fn non_zero(&self, field: &str, value: f64) -> Result<f64, SceneError> {
+        if self.finite(field, value)? == 0.0 {
+            Err(self.error(
+                field,
+                SceneFileProblem::OutOfRange {
+                    value,
+                    requirement: "non-zero",
+                },
+            ))
+        } else {
+            Ok(value)
+        }
+    }
+
+    /// `Ok` unless both of two fields that exclude each other are given.
+    pub(super) fn at_most_one(
+        &self,
+        first: (&str, bool),
+        second: (&str, bool),
+    ) -> Result<(), SceneError> {
+        if first.1 && second.1 {
+            Err(self.error(
+                first.0,
+                SceneFileProblem::Conflict {
+                    other: second.0.to_owned(),
+                },
+            ))
+        } else {
+            Ok(())
+        }
+    }
+}

@@ -1,0 +1,260 @@
+//! Scene files: a TOML description of the meshes, the camera, the lights and the suggested shadow
+//! settings of an experiment, read into a [`Scene`] ([`load_scene`], [`parse_scene`]).
+//!
+//! Only geometry is required: at least one `[[mesh]]`. Every other field has the default stated
+//! below. Unknown fields are errors everywhere (a misspelt `fovy` is reported, not ignored), as
+//! are fields that do not apply (a `radius` on a box, a `cone` on a directional light).
+//!
+//! ```toml
+//! name = "example"                   # default: the file's stem
+//!
+//! [camera]
+//! position = [0.0, 1.8, 0.0]
+//! target = [0.0, 1.0, -50.0]         # or `direction = [...]`
+//! fov = 60.0                         # vertical, degrees
+//! near = 1.0
+//! far = 400.0
+//! image = [1024, 768]
+//!
+//! [[light]]
+//! kind = "directional"
+//! direction = [-1.0, -0.7, 0.0]      # the direction the light TRAVELS
+//!
+//! [[mesh]]
+//! shape = "plane"
+//! size = [1200.0, 1200.0]
+//!
+//! [[mesh]]
+//! obj = "../meshes/bunny-small.obj"  # relative to this file's directory
+//! name = "bunny"
+//! scale = 0.15
+//! rotate = [0.0, 90.0, 0.0]
+//! translate = [1.5, 0.0, -6.0]
+//!
+//! [shadow]
+//! technique = "lispsm"
+//! ```
+//!
+//! # Conventions
+//! World space is `shadowlab-hull`'s: right-handed, **y up**; a camera looks down its eye-space
+//! −z. Angles in the file are in **degrees**; [`Scene`] holds radians. Vectors are arrays of
+//! three numbers; integers are accepted where numbers are expected. `nan` and `inf`, which TOML
+//! allows, are errors in every field.
+//!
+//! The defaults that depend on the scene use its bounds (the axis-aligned box of the merged
+//! mesh, [`Scene::bounds`]): their centre c and R, half their diagonal (the radius of the
+//! bounding sphere about c).
+//!
+//! # `[camera]` (optional table)
+//! | field | meaning | default |
+//! |---|---|---|
+//! | `position` | the eye | c + d·(0, 1, 2)/√5 with d = R / sin φ, φ the smaller of the vertical and horizontal half fields of view: the bounding sphere just fits the view, seen from the +z side and 26.6° above |
+//! | `target` | a point the camera looks at | c |
+//! | `direction` | the view direction instead of `target` (give at most one of the two) | `target − position` |
+//! | `up` | roughly up; orthogonalised against the view direction, must not be parallel to it | `[0, 1, 0]` |
+//! | `fov` | the vertical field of view, degrees, in (0, 180) | 60 |
+//! | `near`, `far` | the clip distances along the view direction, 0 < near < far | from the depths of the bounds' eight corners along the view direction: far = 1.01 × the farthest; near = the larger of 0.99 × the nearest and far / 1000 (or far / 1000 if that is not below a given far) |
+//! | `image` | `[width, height]` in pixels, each ≥ 1; the aspect ratio is width / height | `[1024, 768]` |
+//!
+//! # `[[light]]` (zero or more)
+//! A scene without lights gets the **default sun**: a directional light travelling along
+//! `(−1, −2, −1)` (from the upper right behind a camera on the +z side, 54.7° above the ground).
+//!
+//! `kind = "directional"` (the default):
+//! | field | meaning | default |
+//! |---|---|---|
+//! | `direction` | the direction the light **travels**, from the light into the scene (engine convention) | `[-1, -2, -1]` |
+//!
+//! **Direction convention.** The file gives the direction light *travels*, as engines and most
+//! scene formats do. [`SceneLight::Directional`] holds hull's `to_light`, the unit vector from the
+//! scene *toward* the light: `to_light = −normalize(direction)`. `direction = [0, -1, 0]` is a sun
+//! straight overhead, whose `to_light` is `+y`.
+//!
+//! `kind = "spot"`:
+//! | field | meaning | default |
+//! |---|---|---|
+//! | `position` | the light | c + d·(1, 2, 1)/√6 with d = R / sin(cone/2): where the default sun is, just far enough for the cone to hold the bounding sphere |
+//! | `target` | a point the light shines at | c |
+//! | `direction` | the direction it travels instead of `target` (at most one of the two) | `target − position` |
+//! | `up` | orients the light's image; must not be parallel to the direction | +y, or −z if y is the direction's largest component (ties included) |
+//! | `cone` | the full cone angle, degrees, in (0, 180): the light frustum is the perspective frustum with this vertical field of view and aspect 1 | 60 |
+//! | `near`, `far` | along the direction, as the camera's | as the camera's, from the spot's position and direction |
+//!
+//! # `[[mesh]]` (one or more)
+//! Each entry is an OBJ file or a procedural shape: give exactly one of `obj` and `shape`.
+//! | field | meaning | default |
+//! |---|---|---|
+//! | `obj` | an OBJ file (see [`crate::load_obj`]), relative to the scene file's directory | |
+//! | `shape` | `"plane"`, `"box"`, `"sphere"`, `"cylinder"`, `"lattice"` or `"chessboard"`, with the parameters below | |
+//! | `name` | the entry's group name in [`Scene::mesh`] | the OBJ file's stem, or the shape's name |
+//! | `scale` | a number, or `[sx, sy, sz]`; each finite and non-zero (negative mirrors, and the winding is kept outward) | 1 |
+//! | `rotate` | `[a, b, c]` degrees: about the world x axis by a, then y by b, then z by c, each counter-clockwise seen from the positive axis (right-hand rule); R = Rz(c)·Ry(b)·Rx(a), exact at multiples of 90° | `[0, 0, 0]` |
+//! | `translate` | `[x, y, z]` | `[0, 0, 0]` |
+//! | `copies` | how many copies of the entry, ≥ 1 | 1 |
+//! | `step` | copy k (from 0) is moved by k·`step` after the transform; required if `copies` > 1, not allowed otherwise | |
+//!
+//! A point p of the shape or file becomes `translate + R·(scale ∘ p) + k·step`: scale first, then
+//! rotate, then translate, then the copy's step. All of an entry's triangles (every copy, every
+//! OBJ group, a chess board's colours, a lattice's axes) form **one group** named `name`, so group
+//! k of [`Scene::mesh`] is entry k.
+//!
+//! Shapes and their parameters ([`crate::procedural`]; all centred on the origin, flat ones in the
+//! plane y = 0 facing +y, round ones with their axis along y; by default each fits about the unit
+//! cube):
+//! | shape | parameters (default) |
+//! |---|---|
+//! | `plane` | `size = [x, z]` (`[1, 1]`), `segments` ≥ 1 per side (1) |
+//! | `box` | `size = [x, y, z]` (`[1, 1, 1]`) |
+//! | `sphere` | `radius` (0.5), `segments` ≥ 3 (32), `rings` ≥ 2 (16) |
+//! | `cylinder` | `radius` (0.5), `height` (1), `segments` ≥ 3 (32) |
+//! | `lattice` | `cells = [nx, ny, nz]` (`[4, 4, 4]`), `spacing` (0.25), `thickness` < spacing (0.025): [`crate::procedural::bar_lattice`] |
+//! | `chessboard` | `square_size` (0.125), `frame_width` ≥ 0 (0): [`crate::procedural::chess_board`] |
+//!
+//! Sizes, radii, heights, spacings and thicknesses must be finite and > 0. No mesh (one shape, or
+//! an entry's copies together) may exceed [`crate::procedural::MAX_TRIANGLES`] triangles.
+//!
+//! # `[shadow]` (optional table)
+//! Suggestions for the shadow technique, passed on unvalidated as [`ShadowSettings`]; the
+//! `shadow` crate and the command-line tool check them. All optional: `technique`, `parameter`,
+//! `split_scheme`, `bias`, `filter` (strings), `resolution`, `splits` (non-negative integers).
+//!
+//! # Errors
+//! Every error names the file. TOML errors (syntax, unknown fields, wrong types, unknown shapes or
+//! light kinds, numbers out of their integer type) are [`SceneError::SceneToml`] with toml's line
+//! and column and the field there; values out of range or inconsistent are
+//! [`SceneError::SceneFile`] naming the field by its path (`camera.near`, `light[0].direction`,
+//! `mesh[2].size[1]`), e.g. `outdoor.toml: camera.near (5) must be below camera.far (1)`; meshes
+//! that cannot be built are [`SceneError::SceneMesh`] wrapping the OBJ or shape error. Meshes are
+//! built first (the other defaults need their bounds), then the camera, then the lights. Nothing
+//! panics on any input.
+
+mod checks;
+mod meshes;
+mod raw;
+mod toml_error;
+mod view;
+
+use std::path::Path;
+
+use glam::DVec3;
+
+use crate::error::SceneError;
+#[cfg(doc)]
+use crate::scene::SceneLight;
+use crate::scene::{Scene, ShadowSettings};
+
+use self::checks::Checker;
+use self::raw::{RawScene, RawShadow};
+
+/// The camera's default vertical field of view, in degrees.
+pub const DEFAULT_FOV_DEGREES: f64 = 60.0;
+
+/// The camera's default image size, `[width, height]` in pixels.
+pub const DEFAULT_IMAGE: [u32; 2] = [1024, 768];
+
+/// The camera's default up vector.
+pub const DEFAULT_UP: DVec3 = DVec3::Y;
+
+/// The direction from the scene's centre toward the default camera position (normalised when
+/// used): the +z side, 26.6° above the horizontal.
+pub const DEFAULT_VIEW_FROM: DVec3 = DVec3::new(0.0, 1.0, 2.0);
+
+/// The direction the default sun travels (normalised when used); `to_light` is its negation.
+pub const DEFAULT_SUN_DIRECTION: DVec3 = DVec3::new(-1.0, -2.0, -1.0);
+
+/// A spot light's default full cone angle, in degrees.
+pub const DEFAULT_CONE_DEGREES: f64 = 60.0;
+
+/// The relative margin by which default near and far planes clear the scene's bounds, so that a
+/// renderer's rounding cannot clip the nearest or farthest geometry.
+pub const DEPTH_MARGIN: f64 = 0.01;
+
+/// The largest far/near ratio of default near planes: near is at least far / 1000.
+pub const MAX_FAR_NEAR_RATIO: f64 = 1000.0;
+
+/// Where the `obj` paths of a scene's mesh entries are read from.
+pub(crate) enum ObjFiles<'a> {
+    /// From disk, relative to this directory (the scene file's).
+    Relative(&'a Path),
+    /// From text embedded in the binary, looked up by the `obj` string as written; `directory`
+    /// only names them in errors.
+    Embedded {
+        directory: &'a Path,
+        files: &'a [(&'a str, &'a str)],
+    },
+}
+
+/// Reads a scene file; `obj` paths are relative to its directory.
+///
+/// # Errors
+/// [`SceneError::Io`] if the file cannot be read (or is not UTF-8); otherwise as [`parse_scene`].
+pub fn load_scene(path: &Path) -> Result<Scene, SceneError> {
+    let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io {
+        path: path.to_owned(),
+        source,
+    })?;
+    parse_scene(&text, path)
+}
+
+/// Reads scene-file text as if it were the file `path`: errors name `path`, the scene's default
+/// name is its stem, and `obj` paths are relative to its directory (the text is not read from
+/// `path`).
+///
+/// # Errors
+/// - [`SceneError::SceneToml`]: not TOML, or not the format (unknown field, wrong type, unknown
+///   `shape` or `kind`), with the line, column and field;
+/// - [`SceneError::SceneFile`]: a value out of range or inconsistent, naming the field (see the
+///   [module documentation](self) for every rule);
+/// - [`SceneError::SceneMesh`]: an OBJ file that is missing or malformed, a shape with too many
+///   triangles or inconsistent parameters, a transform that overflows;
+/// - [`SceneError::SceneHull`]: a camera or light that overflows `shadowlab-hull`'s checks.
+pub fn parse_scene(text: &str, path: &Path) -> Result<Scene, SceneError> {
+    let directory = path.parent().unwrap_or(Path::new(""));
+    parse(text, path, &ObjFiles::Relative(directory))
+}
+
+/// [`parse_scene`] with the OBJ files read from `obj_files`.
+pub(crate) fn parse(
+    text: &str,
+    path: &Path,
+    obj_files: &ObjFiles<'_>,
+) -> Result<Scene, SceneError> {
+    let raw: RawScene =
+        toml::from_str(text).map_err(|error| toml_error::scene_toml_error(path, text, &error))?;
+    let checker = Checker::new(path);
+    let mesh = meshes::scene_mesh(checker, &raw.mesh, obj_files)?;
+    let bounds = mesh.bounds();
+    let camera = view::camera(checker, &raw.camera, &bounds)?;
+    let lights = if raw.light.is_empty() {
+        vec![view::default_sun(checker)?]
+    } else {
+        raw.light
+            .iter()
+            .enumerate()
+            .map(|(index, light)| view::light(checker, index, light, &bounds))
+            .collect::<Result<_, _>>()?
+    };
+    let name = raw.name.unwrap_or_else(|| {
+        let stem = path.file_stem().unwrap_or_default();
+        stem.to_string_lossy().into_owned()
+    });
+    Ok(Scene {
+        name,
+        camera,
+        lights,
+        mesh,
+        shadow: shadow_settings(raw.shadow),
+    })
+}
+
+fn shadow_settings(raw: RawShadow) -> ShadowSettings {
+    ShadowSettings {
+        technique: raw.technique,
+        parameter: raw.parameter,
+        resolution: raw.resolution,
+        splits: raw.splits,
+        split_scheme: raw.split_scheme,
+        bias: raw.bias,
+        filter: raw.filter,
+    }
+}
