@@ -24,6 +24,120 @@ pub(crate) enum Command {
     /// Rasterize a mesh in the benchmark's light and eye views and write the depth images (PNG and
     /// EXR), for comparison with any other renderer.
     RenderMesh(RenderMeshArgs),
+    /// Render a scene with shadows by one technique: the shaded eye view, every shadow map, and
+    /// the light's view with the eye frustum and the focus body outlined.
+    Render(RenderArgs),
+    /// Print what a technique decides for a scene: γ, the warp parameter, the focus body B, the
+    /// light's view and projection matrices, the split distances.
+    Inspect(InspectArgs),
+    /// Render a scene with several techniques and put the same crop of each eye view side by side
+    /// in one labelled picture.
+    Compare(CompareArgs),
+}
+
+/// Arguments of `shadowlab compare`.
+#[derive(Debug, Args)]
+pub(crate) struct CompareArgs {
+    /// A built-in scene or a scene file. Default: outdoor.
+    pub(crate) scene: Option<String>,
+    /// The techniques, comma-separated, each `TECHNIQUE` or `lispsm:PARAMETER`.
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "uniform,uniform_limited,psm,lispsm,logarithmic"
+    )]
+    pub(crate) techniques: Vec<String>,
+    /// Shadow-map side in texels.
+    #[arg(long, default_value_t = 1024, value_parser = clap::value_parser!(u32).range(1..=16384))]
+    pub(crate) resolution: u32,
+    /// The part of the eye image to show, `X,Y,WIDTH,HEIGHT` in pixels from the top left. Default:
+    /// the whole image.
+    #[arg(long, value_parser = parse_crop)]
+    pub(crate) crop: Option<[u32; 4]>,
+    /// Pictures per row.
+    #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u32).range(1..=16))]
+    pub(crate) columns: u32,
+    /// The PNG to write.
+    #[arg(long, default_value = "out/compare.png")]
+    pub(crate) out: PathBuf,
+}
+
+fn parse_crop(text: &str) -> Result<[u32; 4], String> {
+    let values: Vec<u32> = text
+        .split(',')
+        .map(|v| {
+            v.trim()
+                .parse::<u32>()
+                .map_err(|_| format!("{v:?} is not a whole number"))
+        })
+        .collect::<Result<_, _>>()?;
+    let [x, y, w, h] = values[..] else {
+        return Err("expected X,Y,WIDTH,HEIGHT".into());
+    };
+    if w == 0 || h == 0 {
+        return Err("the crop's width and height must be at least 1".into());
+    }
+    Ok([x, y, w, h])
+}
+
+/// What shadows to make and how to read them; unset values come from the scene's `[shadow]`
+/// table, then from the defaults shown.
+#[derive(Debug, Args)]
+pub(crate) struct ShadowArgs {
+    /// A built-in scene (outdoor, dueling-frusta, cad-lattice, chess-spot, bunny) or a scene file
+    /// (.toml). Default: outdoor.
+    pub(crate) scene: Option<String>,
+    /// The technique: uniform, uniform_limited, psm, lispsm, logarithmic. Default: lispsm.
+    #[arg(long)]
+    pub(crate) technique: Option<String>,
+    /// LiSPSM's parameter: lispsm (the paper's n_opt/sin γ, default), lispsm_dz, cad, cad_eq17,
+    /// cad_sin2, gmnpr, glpr, minimax, uniform; or an engine's: filament, ogre, osg, authors2006,
+    /// osg_vdsm.
+    #[arg(long = "param")]
+    pub(crate) parameter: Option<String>,
+    /// Shadow-map side in texels. Default: 1024.
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=16384))]
+    pub(crate) resolution: Option<u32>,
+    /// Number of z-partitions (one map each). Default: 1.
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=16))]
+    pub(crate) splits: Option<u32>,
+    /// How partitions split the depth range: uniform, logarithmic, practical or practical:WEIGHT,
+    /// adaptive or adaptive:DELTA. Default: practical:0.5.
+    #[arg(long)]
+    pub(crate) split_scheme: Option<String>,
+    /// Depth bias: none, constant:OFFSET, slope:FACTOR or slope:FACTOR,CONSTANT, second-depth, midpoint,
+    /// dual-depth:MAX (window-depth units). Default: slope:2,1e-5.
+    #[arg(long)]
+    pub(crate) bias: Option<String>,
+    /// Filter: nearest, pcf:K, disk:TAPS,RADIUS or disk:TAPS,RADIUS,SEED, vsm:K or
+    /// vsm:K,MIN_VARIANCE. Default: nearest.
+    #[arg(long)]
+    pub(crate) filter: Option<String>,
+    /// Depth format of the maps: f32, reversed-f32, unorm24, unorm16. Default: f32.
+    #[arg(long)]
+    pub(crate) format: Option<String>,
+}
+
+/// Arguments of `shadowlab render`.
+#[derive(Debug, Args)]
+pub(crate) struct RenderArgs {
+    /// The scene and its shadows.
+    #[command(flatten)]
+    pub(crate) shadow: ShadowArgs,
+    /// Directory to write into (created if missing). Default: out/render/SCENE-TECHNIQUE.
+    #[arg(long)]
+    pub(crate) out: Option<PathBuf>,
+}
+
+/// Arguments of `shadowlab inspect`.
+#[derive(Debug, Args)]
+pub(crate) struct InspectArgs {
+    /// The scene and its shadows.
+    #[command(flatten)]
+    pub(crate) shadow: ShadowArgs,
+    /// Print one JSON object instead of text.
+    #[arg(long)]
+    pub(crate) json: bool,
 }
 
 /// Arguments of `shadowlab render-mesh`.

@@ -6,11 +6,15 @@
 //! into place, so a failed run leaves nothing half-written.
 
 mod args;
+mod compare_command;
 mod curves_command;
 mod error;
+mod inspect_command;
 mod output;
 mod params_command;
+mod render_command;
 mod render_mesh_command;
+mod shadow_settings;
 
 use std::process::ExitCode;
 
@@ -28,6 +32,9 @@ fn main() -> ExitCode {
         Command::Params(args) => params_command::run(&args),
         Command::Curves(args) => curves_command::run(&args),
         Command::RenderMesh(args) => render_mesh_command::run(&args),
+        Command::Render(args) => render_command::run(&args),
+        Command::Inspect(args) => inspect_command::run(&args),
+        Command::Compare(args) => compare_command::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

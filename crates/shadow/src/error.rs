@@ -15,6 +15,8 @@ pub enum ShadowError {
     Parameter(ParamError),
     /// The rasterizer rejected a draw (bad indices, target size).
     Raster(RasterError),
+    /// The ray caster rejected a mesh or a ray (its message).
+    Trace(String),
     /// The focus body B is empty: nothing in the scene bounds can cast a shadow into the view.
     EmptyFocusBody,
     /// The focus body is flat along an axis the shadow map must span (named), so no map fits it.
@@ -39,6 +41,7 @@ impl fmt::Display for ShadowError {
             Self::Geometry(e) => write!(f, "{e}"),
             Self::Parameter(e) => write!(f, "{e}"),
             Self::Raster(e) => write!(f, "{e}"),
+            Self::Trace(e) => f.write_str(e),
             Self::EmptyFocusBody => f.write_str(
                 "the focus body is empty: nothing inside the scene bounds can cast a shadow into the view",
             ),

@@ -30,14 +30,19 @@ mod map;
 pub mod measure;
 mod plan;
 pub mod psm;
+mod render;
 mod setup;
 mod technique;
+pub mod view;
 mod warp;
 
 pub use error::ShadowError;
 pub use input::{Eye, FocusPolicy, LightSource, PlanInput};
-pub use lookup::{Bias, Filter, Lookup};
+pub use lookup::{Bias, DEFAULT_DISK_SEED, DEFAULT_MIN_VARIANCE, Filter, Lookup};
 pub use map::{MapOptions, ShadowMap};
 pub use plan::{Partition, Splits, plan, plan_partitions};
+pub use render::{
+    Frame, FrameOptions, LightShadow, Timings, eye_pass, plan_light, render_frame, scene_eye,
+};
 pub use setup::{LightSetup, PsmReport, ShadowMapping, WarpReport};
 pub use technique::{ProductionVariant, Technique, WarpChoice};

@@ -19,7 +19,7 @@
 //! made by casting one ray per texel along the light ([`LogarithmicMap::texel_ray`]).
 //!
 //! It exists only where B lies entirely on one side of the eye along the warp axis (`z_max < 0`);
-//! for B = V that is `γ > φ`. Elsewhere [`plan`] says the technique is not defined, as
+//! for B = V that is `γ > φ`. Elsewhere [`crate::plan`] says the technique is not defined, as
 //! `shadowlab-params` does for GLPR.
 
 use glam::{DMat4, DVec3};

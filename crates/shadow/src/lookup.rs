@@ -281,3 +281,136 @@ fn disk_taps(taps: u32, radius: f64, seed: u64) -> Vec<DVec2> {
         })
         .collect()
 }
+
+/// The numbers after `name:` in a spec like `slope:2,1e-5`, at most `max` of them.
+fn spec_numbers(spec: &str, max: usize) -> Result<(&str, Vec<f64>), String> {
+    let (name, rest) = spec.split_once(':').unwrap_or((spec, ""));
+    let numbers: Vec<f64> = rest
+        .split(',')
+        .filter(|s| !s.is_empty())
+        .map(|s| {
+            s.trim()
+                .parse::<f64>()
+                .ok()
+                .filter(|v| v.is_finite())
+                .ok_or_else(|| format!("{s:?} in {spec:?} is not a finite number"))
+        })
+        .collect::<Result<_, _>>()?;
+    if numbers.len() > max {
+        return Err(format!(
+            "{spec:?} takes at most {max} numbers after {name:?}"
+        ));
+    }
+    Ok((name, numbers))
+}
+
+impl Bias {
+    /// The default of `shadowlab render`: slope-scaled, factor 2 and constant 1e-5 (window depth).
+    pub const DEFAULT: Self = Self::SlopeScaled {
+        constant: 1e-5,
+        slope: 2.0,
+    };
+
+    /// Parses `none`, `constant:OFFSET`, `slope:FACTOR[,CONSTANT]`, `second-depth`, `midpoint`,
+    /// `dual-depth:MAX` (depths in window units).
+    ///
+    /// # Errors
+    /// A message naming what is wrong and the accepted forms.
+    pub fn parse(spec: &str) -> Result<Self, String> {
+        let (name, n) = spec_numbers(spec, 2)?;
+        let non_negative = |v: f64, what: &str| {
+            if v >= 0.0 {
+                Ok(v)
+            } else {
+                Err(format!("{what} in {spec:?} must be at least 0"))
+            }
+        };
+        match (name, n.as_slice()) {
+            ("none", []) => Ok(Self::None),
+            ("constant", [offset]) => Ok(Self::Constant { offset: *offset }),
+            ("slope", [slope]) => Ok(Self::SlopeScaled {
+                constant: 0.0,
+                slope: non_negative(*slope, "the factor")?,
+            }),
+            ("slope", [slope, constant]) => Ok(Self::SlopeScaled {
+                constant: *constant,
+                slope: non_negative(*slope, "the factor")?,
+            }),
+            ("second-depth", []) => Ok(Self::SecondDepth),
+            ("midpoint", []) => Ok(Self::Midpoint),
+            ("dual-depth", [max]) => Ok(Self::DualDepth {
+                max_bias: non_negative(*max, "the cap")?,
+            }),
+            _ => Err(format!(
+                "unknown bias {spec:?}; known: none, constant:OFFSET, slope:FACTOR[,CONSTANT], second-depth, midpoint, dual-depth:MAX"
+            )),
+        }
+    }
+}
+
+impl Filter {
+    /// Parses `nearest`, `pcf:K`, `disk:TAPS,RADIUS[,SEED]`, `vsm:K[,MIN_VARIANCE]`.
+    ///
+    /// # Errors
+    /// A message naming what is wrong and the accepted forms.
+    pub fn parse(spec: &str) -> Result<Self, String> {
+        let (name, n) = spec_numbers(spec, 3)?;
+        let count = |v: f64, what: &str| {
+            #[expect(
+                clippy::cast_possible_truncation,
+                clippy::cast_sign_loss,
+                reason = "checked to be a whole number in 1..=64"
+            )]
+            let whole = (v.fract() == 0.0 && (1.0..=64.0).contains(&v)).then_some(v as u32);
+            whole.ok_or_else(|| format!("{what} in {spec:?} must be a whole number from 1 to 64"))
+        };
+        match (name, n.as_slice()) {
+            ("nearest", []) => Ok(Self::Nearest),
+            ("pcf", [k]) => Ok(Self::Pcf {
+                size: count(*k, "the kernel size")?,
+            }),
+            ("disk", [taps, radius]) | ("disk", [taps, radius, _]) => {
+                let seed = match n.get(2) {
+                    #[expect(
+                        clippy::cast_possible_truncation,
+                        clippy::cast_sign_loss,
+                        reason = "checked to be a whole non-negative number below 2^53"
+                    )]
+                    Some(s) if s.fract() == 0.0 && *s >= 0.0 && *s < 9_007_199_254_740_992.0 => {
+                        *s as u64
+                    }
+                    Some(_) => {
+                        return Err(format!(
+                            "the seed in {spec:?} must be a whole number from 0 to 2^53"
+                        ));
+                    }
+                    None => DEFAULT_DISK_SEED,
+                };
+                if *radius <= 0.0 {
+                    return Err(format!("the radius in {spec:?} must be greater than 0"));
+                }
+                Ok(Self::Disk {
+                    taps: count(*taps, "the number of taps")?,
+                    radius: *radius,
+                    seed,
+                })
+            }
+            ("vsm", [k]) => Ok(Self::Vsm {
+                size: count(*k, "the kernel size")?,
+                min_variance: DEFAULT_MIN_VARIANCE,
+            }),
+            ("vsm", [k, floor]) if *floor >= 0.0 => Ok(Self::Vsm {
+                size: count(*k, "the kernel size")?,
+                min_variance: *floor,
+            }),
+            _ => Err(format!(
+                "unknown filter {spec:?}; known: nearest, pcf:K, disk:TAPS,RADIUS[,SEED], vsm:K[,MIN_VARIANCE]"
+            )),
+        }
+    }
+}
+
+/// The jittered disk's seed when none is given (documented in the README and `--help`).
+pub const DEFAULT_DISK_SEED: u64 = 0x5348_4144_4f57;
+/// VSM's variance floor when none is given: (1e-3 of the depth range)².
+pub const DEFAULT_MIN_VARIANCE: f64 = 1e-6;

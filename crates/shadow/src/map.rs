@@ -1,12 +1,18 @@
 //! Rendering a planned shadow map.
 
 use glam::DVec3;
+use rayon::prelude::*;
 use shadowlab_raster::{
     DepthFormat, DepthPairTarget, DepthTarget, RasterOptions, Rasterizer, Triangles,
 };
+use shadowlab_trace::{Bvh, Ray};
 
 use crate::error::ShadowError;
 use crate::setup::{LightSetup, ShadowMapping};
+
+/// Along a texel's ray (t from 0 to 1 across B's light-axis extent), hits closer than this to the
+/// first count as the same surface when looking for the second.
+const SAME_SURFACE: f64 = 1e-9;
 
 /// What to render.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -74,6 +80,58 @@ impl ShadowMap {
             format: options.format,
             nearest,
             second,
+        })
+    }
+
+    /// Makes the logarithmic map exactly: one ray of light per texel centre, found through the
+    /// inverse mapping ([`crate::logarithmic::LogarithmicMap::texel_ray`]), cast against `bvh`;
+    /// the first hit's depth (and the second's, if asked for) through the forward mapping, stored
+    /// in `options.format`. Rows are cast in parallel; each texel's value depends on its ray alone.
+    ///
+    /// # Errors
+    /// [`ShadowError::NotDefined`] for a projective set-up (rasterize it with [`Self::render`]);
+    /// [`ShadowError::Trace`] if a texel's ray is invalid (a degenerate map).
+    pub fn cast(setup: &LightSetup, bvh: &Bvh, options: MapOptions) -> Result<Self, ShadowError> {
+        let ShadowMapping::Logarithmic(map) = &setup.mapping else {
+            return Err(ShadowError::NotDefined {
+                technique: setup.technique.key(),
+                reason: "a projective map is rasterized, not cast".into(),
+            });
+        };
+        let side = options.resolution as usize;
+        let texel_depths = |i: usize, j: usize| -> Result<(f64, f64), ShadowError> {
+            #[expect(clippy::cast_precision_loss, reason = "texel indices are small")]
+            let centre = |k: usize| (k as f64 + 0.5) / side as f64 * 2.0 - 1.0;
+            let (from, to) = map.texel_ray(centre(i), centre(j));
+            let ray = Ray::new(from, to - from).map_err(|e| ShadowError::Trace(e.to_string()))?;
+            let store = |t: f64| {
+                let depth = map.ndc(ray.at(t)).map_or(1.0, |ndc| 0.5 * (ndc.z + 1.0));
+                options.format.decode(options.format.encode(depth))
+            };
+            let Some(first) = bvh.closest_hit(&ray, 0.0, 1.0) else {
+                return Ok((1.0, 1.0));
+            };
+            // The next surface: beyond the first by more than SAME_SURFACE, so that the first
+            // surface's neighbour across a shared edge (hit a few ulps further) is not taken for it.
+            let second = if options.second_depth {
+                bvh.closest_hit(&ray, first.t + SAME_SURFACE, 1.0)
+                    .map_or(1.0, |h| store(h.t))
+            } else {
+                1.0
+            };
+            Ok((store(first.t), second))
+        };
+        let rows: Vec<Vec<(f64, f64)>> = (0..side)
+            .into_par_iter()
+            .map(|j| (0..side).map(|i| texel_depths(i, j)).collect())
+            .collect::<Result<_, ShadowError>>()?;
+        let (nearest, second): (Vec<f64>, Vec<f64>) = rows.into_iter().flatten().unzip();
+        Ok(Self {
+            setup: setup.clone(),
+            resolution: options.resolution,
+            format: options.format,
+            nearest,
+            second: options.second_depth.then_some(second),
         })
     }
 

@@ -364,3 +364,49 @@ pub fn plan_partitions(
         })
         .collect()
 }
+
+impl Splits {
+    /// Parses `uniform`, `logarithmic`, `practical[:WEIGHT]` (default 0.5, three.js's; OGRE ships
+    /// 0.95), `adaptive[:DELTA]` (default 2, CAD's recommendation with PCF).
+    ///
+    /// # Errors
+    /// A message naming what is wrong and the accepted forms.
+    pub fn parse(spec: &str) -> Result<Self, String> {
+        let (name, value) = match spec.split_once(':') {
+            Some((name, v)) => (
+                name,
+                Some(
+                    v.trim()
+                        .parse::<f64>()
+                        .ok()
+                        .filter(|v| v.is_finite())
+                        .ok_or_else(|| format!("{v:?} in {spec:?} is not a finite number"))?,
+                ),
+            ),
+            None => (spec, None),
+        };
+        match (name, value) {
+            ("uniform", None) => Ok(Self::Uniform),
+            ("logarithmic", None) => Ok(Self::Logarithmic),
+            ("practical", weight) => {
+                let weight = weight.unwrap_or(0.5);
+                if (0.0..=1.0).contains(&weight) {
+                    Ok(Self::Practical { weight })
+                } else {
+                    Err(format!("the weight in {spec:?} must lie in [0, 1]"))
+                }
+            }
+            ("adaptive", delta) => {
+                let delta = delta.unwrap_or(2.0);
+                if delta > 1.0 {
+                    Ok(Self::Adaptive { delta })
+                } else {
+                    Err(format!("δ in {spec:?} must be greater than 1"))
+                }
+            }
+            _ => Err(format!(
+                "unknown split scheme {spec:?}; known: uniform, logarithmic, practical[:WEIGHT], adaptive[:DELTA]"
+            )),
+        }
+    }
+}

@@ -1,0 +1,259 @@
+//! One frame of a scene: the eye pass, every light's shadow maps, and the lookups — timed per
+//! phase, as the analyzer needs them.
+
+use std::time::{Duration, Instant};
+
+use glam::DVec3;
+use rayon::prelude::*;
+use shadowlab_hull::{Aabb, NdcDepth};
+use shadowlab_raster::{
+    DepthFormat, EyeImage, EyeTarget, NO_TRIANGLE, RasterOptions, Rasterizer, Triangles,
+};
+use shadowlab_scene::{Scene, SceneLight};
+use shadowlab_trace::Bvh;
+
+use crate::error::ShadowError;
+use crate::input::{Eye, FocusPolicy, LightSource, PlanInput};
+use crate::lookup::Lookup;
+use crate::map::{MapOptions, ShadowMap};
+use crate::plan::{Partition, Splits, plan_partitions};
+use crate::setup::ShadowMapping;
+use crate::technique::Technique;
+
+/// How a frame's shadows are made and read.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FrameOptions {
+    /// The technique of every light's maps.
+    pub technique: Technique,
+    /// Side of each shadow map, in texels.
+    pub resolution: u32,
+    /// The maps' depth format.
+    pub format: DepthFormat,
+    /// Number of z-partitions (1: one map per light).
+    pub partitions: usize,
+    /// How the depth range is split when `partitions > 1`.
+    pub splits: Splits,
+    /// Bias and filter.
+    pub lookup: Lookup,
+}
+
+/// One light's shadow: its partitions and their maps.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LightShadow {
+    /// The light.
+    pub light: LightSource,
+    /// The partitions (one if unpartitioned), nearest first, each with its rendered map.
+    pub maps: Vec<(Partition, ShadowMap)>,
+}
+
+/// Wall-clock time of each phase of a frame.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Timings {
+    /// The eye pass and its resolve into positions and normals.
+    pub eye_pass: Duration,
+    /// Planning: focus bodies and warp parameters.
+    pub planning: Duration,
+    /// Rendering the shadow maps.
+    pub shadow_pass: Duration,
+    /// Looking every visible point up.
+    pub lookup: Duration,
+}
+
+/// A rendered frame.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Frame {
+    /// The eye pass: depth, triangle, world position and normal per pixel (row 0 at the bottom).
+    pub eye: EyeImage,
+    /// Per light, its maps.
+    pub lights: Vec<LightShadow>,
+    /// Per light, how lit each pixel's visible point is (1 where nothing is visible).
+    pub lit: Vec<Vec<f64>>,
+    /// Time per phase.
+    pub timings: Timings,
+}
+
+impl LightSource {
+    /// The light of a scene.
+    #[must_use]
+    pub fn from_scene(light: &SceneLight) -> Self {
+        match light {
+            SceneLight::Directional { to_light } => Self::Directional {
+                to_light: *to_light,
+            },
+            SceneLight::Spot { pose, cone } => Self::Spot {
+                pose: *pose,
+                cone: *cone,
+            },
+        }
+    }
+}
+
+/// The eye pass of `scene`: depth, triangle, world position and normal per pixel, and the nearest
+/// eye depth of a visible surface (PSM's near plane), `None` if nothing is visible.
+///
+/// # Errors
+/// The rasterizer's.
+pub fn eye_pass(scene: &Scene) -> Result<(EyeImage, Option<f64>), ShadowError> {
+    let camera = &scene.camera;
+    let mesh = Triangles::new(scene.mesh.positions(), scene.mesh.triangles());
+    let clip_from_world = camera.view_projection(NdcDepth::NegativeOneToOne);
+    let mut target = EyeTarget::new(camera.width, camera.height, DepthFormat::F32)?;
+    Rasterizer::new(RasterOptions::default()).draw_eye(&mut target, mesh, &clip_from_world)?;
+    let image = target.resolve(mesh, scene.mesh.normals(), &clip_from_world)?;
+    let nearest = eye_depths(&image, &scene_eye(scene))
+        .iter()
+        .flatten()
+        .fold(f64::INFINITY, |a, b| a.min(*b));
+    Ok((image, nearest.is_finite().then_some(nearest)))
+}
+
+/// The scene's camera as a technique sees it.
+#[must_use]
+pub fn scene_eye(scene: &Scene) -> Eye {
+    Eye {
+        pose: scene.camera.pose,
+        projection: scene.camera.projection,
+    }
+}
+
+/// Plans one light of `scene`: `partitions` z-partitions split by `splits` (one: the whole view),
+/// each with `technique`, PSM's near plane at `nearest_visible_depth`.
+///
+/// # Errors
+/// As [`plan_partitions`]; an invalid scene box.
+pub fn plan_light(
+    scene: &Scene,
+    light: &SceneLight,
+    technique: Technique,
+    splits: Splits,
+    partitions: usize,
+    nearest_visible_depth: Option<f64>,
+) -> Result<Vec<Partition>, ShadowError> {
+    let bounds = scene.bounds();
+    let input = PlanInput {
+        eye: scene_eye(scene),
+        light: LightSource::from_scene(light),
+        scene: Aabb::new(bounds.min, bounds.max)?,
+        nearest_visible_depth,
+        focus: FocusPolicy::Scene,
+    };
+    plan_partitions(&input, technique, splits, partitions.max(1))
+}
+
+/// Renders `scene` with shadows made as `options` says.
+///
+/// # Errors
+/// As [`crate::plan`] (the technique undefined for a light, an empty focus body, …) and the
+/// rasterizer's.
+pub fn render_frame(scene: &Scene, options: &FrameOptions) -> Result<Frame, ShadowError> {
+    let mesh = Triangles::new(scene.mesh.positions(), scene.mesh.triangles());
+    let start = Instant::now();
+    let (eye_image, nearest_visible) = eye_pass(scene)?;
+    let depths = eye_depths(&eye_image, &scene_eye(scene));
+    let mut timings = Timings {
+        eye_pass: start.elapsed(),
+        ..Timings::default()
+    };
+    let bvh = match options.technique {
+        Technique::Logarithmic => Some(
+            Bvh::new(scene.mesh.positions(), scene.mesh.triangles())
+                .map_err(|e| ShadowError::Trace(e.to_string()))?,
+        ),
+        _ => None,
+    };
+    let map_options = MapOptions {
+        resolution: options.resolution,
+        format: options.format,
+        second_depth: options.lookup.bias.needs_second_depth(),
+    };
+    let mut lights = Vec::with_capacity(scene.lights.len());
+    for scene_light in &scene.lights {
+        let start = Instant::now();
+        let partitions = plan_light(
+            scene,
+            scene_light,
+            options.technique,
+            options.splits,
+            options.partitions,
+            nearest_visible,
+        )?;
+        timings.planning += start.elapsed();
+        let start = Instant::now();
+        let maps = partitions
+            .into_iter()
+            .map(|partition| {
+                let map = match (&partition.setup.mapping, &bvh) {
+                    (ShadowMapping::Logarithmic(_), Some(bvh)) => {
+                        ShadowMap::cast(&partition.setup, bvh, map_options)
+                    }
+                    _ => ShadowMap::render(&partition.setup, mesh, map_options),
+                }?;
+                Ok((partition, map))
+            })
+            .collect::<Result<Vec<_>, ShadowError>>()?;
+        timings.shadow_pass += start.elapsed();
+        lights.push(LightShadow {
+            light: LightSource::from_scene(scene_light),
+            maps,
+        });
+    }
+
+    let start = Instant::now();
+    let lit = lights
+        .iter()
+        .map(|shadow| look_up(&eye_image, &depths, shadow, &options.lookup))
+        .collect();
+    timings.lookup = start.elapsed();
+    Ok(Frame {
+        eye: eye_image,
+        lights,
+        lit,
+        timings,
+    })
+}
+
+/// The eye depth `(p − e)·v` of each pixel's visible point (`None` where nothing is visible).
+fn eye_depths(image: &EyeImage, eye: &Eye) -> Vec<Option<f64>> {
+    let (e, v) = (eye.pose.eye(), eye.pose.forward());
+    image
+        .triangle
+        .iter()
+        .zip(&image.position)
+        .map(|(t, p)| (*t != NO_TRIANGLE).then(|| (*p - e).dot(v)))
+        .collect()
+}
+
+/// Rows of pixels looked up per parallel job; any size gives the same result.
+const LOOKUP_ROWS: usize = 8;
+
+/// How lit each pixel's visible point is by one light.
+fn look_up(
+    image: &EyeImage,
+    depths: &[Option<f64>],
+    shadow: &LightShadow,
+    lookup: &Lookup,
+) -> Vec<f64> {
+    let width = image.width as usize;
+    let mut lit = vec![1.0; image.triangle.len()];
+    lit.par_chunks_mut(width * LOOKUP_ROWS)
+        .enumerate()
+        .for_each(|(chunk, rows)| {
+            let first = chunk * width * LOOKUP_ROWS;
+            for (k, value) in rows.iter_mut().enumerate() {
+                let pixel = first + k;
+                let Some(depth) = depths[pixel] else {
+                    continue;
+                };
+                let position: DVec3 = image.position[pixel];
+                // The partition serving this depth: the last whose near is at most it.
+                let index = shadow
+                    .maps
+                    .iter()
+                    .rposition(|(p, _)| p.near <= depth)
+                    .unwrap_or(0);
+                let map = &shadow.maps[index].1;
+                *value = lookup.lit_fraction(map, position, image.normal[pixel]);
+            }
+        });
+    lit
+}

@@ -1,0 +1,203 @@
+//! Pictures of a frame: the shaded eye view, and the light's view of a shadow map with the view
+//! frustum and the focus body outlined, as the papers draw them.
+
+use glam::{DVec2, DVec3};
+use shadowlab_hull::{ConvexHull2, convex_hull_2d};
+use shadowlab_raster::NO_TRIANGLE;
+use shadowlab_scene::Scene;
+use tiny_skia::{Color, LineCap, Paint, PathBuilder, Pixmap, Stroke, Transform};
+
+use crate::input::{Eye, LightSource};
+use crate::map::ShadowMap;
+use crate::render::Frame;
+
+/// Albedos of the mesh groups, in turn (linear, 0–1): muted, distinguishable, printable.
+const PALETTE: [[f64; 3]; 8] = [
+    [0.72, 0.70, 0.64],
+    [0.80, 0.48, 0.32],
+    [0.36, 0.56, 0.78],
+    [0.56, 0.72, 0.40],
+    [0.86, 0.74, 0.36],
+    [0.62, 0.46, 0.72],
+    [0.40, 0.70, 0.70],
+    [0.84, 0.56, 0.64],
+];
+/// The background where no surface is seen.
+const SKY: [f64; 3] = [0.83, 0.88, 0.94];
+/// Light reaching every surface (no shadow test).
+const AMBIENT: f64 = 0.28;
+/// The direct light's strength, split among the lights.
+const DIRECT: f64 = 0.85;
+/// Samples along each frustum edge (the logarithmic map bends them).
+const EDGE_SAMPLES: u32 = 48;
+
+/// The eye view shaded with its shadows: per-group albedo × (ambient + Σ direct·cos·lit), the
+/// normal turned toward the eye; 8-bit sRGB, row 0 at the bottom.
+#[must_use]
+pub fn shade(frame: &Frame, scene: &Scene) -> Vec<[u8; 3]> {
+    let image = &frame.eye;
+    let eye = scene.camera.pose.eye();
+    let groups = scene.mesh.groups();
+    let direct = DIRECT / frame.lights.len().max(1) as f64;
+    (0..image.triangle.len())
+        .map(|pixel| {
+            let triangle = image.triangle[pixel];
+            if triangle == NO_TRIANGLE {
+                return to_srgb8(SKY);
+            }
+            let position = image.position[pixel];
+            let mut normal = image.normal[pixel];
+            if normal.dot(eye - position) < 0.0 {
+                normal = -normal;
+            }
+            let light: f64 = frame
+                .lights
+                .iter()
+                .zip(&frame.lit)
+                .map(|(shadow, lit)| {
+                    let toward = shadow.light.toward_from(position);
+                    let cone = match shadow.light {
+                        LightSource::Spot { pose, cone } => {
+                            let inside =
+                                (-toward).dot(pose.forward()) >= (0.5 * cone.fov_y()).cos();
+                            if inside { 1.0 } else { 0.0 }
+                        }
+                        LightSource::Directional { .. } => 1.0,
+                    };
+                    direct * normal.dot(toward).max(0.0) * lit[pixel] * cone
+                })
+                .sum();
+            let albedo = PALETTE[groups[triangle as usize] as usize % PALETTE.len()];
+            to_srgb8(albedo.map(|a| a * (AMBIENT + light)))
+        })
+        .collect()
+}
+
+/// The shadow map as the light sees it: stored depth as grey (near dark, empty white), the view
+/// frustum's edges in red and the outline of the focus body B in blue, drawn through the map's
+/// own mapping (so the logarithmic map bends them). 8-bit sRGB, `resolution²`, row 0 at the bottom.
+#[must_use]
+pub fn light_view(map: &ShadowMap, eye: &Eye) -> Vec<[u8; 3]> {
+    let side = map.resolution;
+    let mut pixmap = Pixmap::new(side, side).expect("a non-empty map");
+    for (k, pixel) in pixmap.pixels_mut().iter_mut().enumerate() {
+        // Pixmaps are top-down; the map's rows bottom-up.
+        let (i, j) = (k % side as usize, side as usize - 1 - k / side as usize);
+        let depth = map.nearest[j * side as usize + i];
+        #[expect(
+            clippy::cast_possible_truncation,
+            clippy::cast_sign_loss,
+            reason = "in [0, 255]"
+        )]
+        let grey = (depth.clamp(0.0, 1.0).powf(0.6) * 235.0 + 20.0).round() as u8;
+        *pixel = tiny_skia::ColorU8::from_rgba(grey, grey, grey, 255).premultiply();
+    }
+    let to_pixel = |world: DVec3| {
+        map.setup
+            .mapping
+            .window(world)
+            .map(|w| DVec2::new(w.x * f64::from(side), (1.0 - w.y) * f64::from(side)))
+    };
+    let width = (f64::from(side) / 256.0).max(1.0);
+    // B's outline: the convex hull of its vertices on the map.
+    let outline: Vec<DVec2> = map
+        .setup
+        .focus_body
+        .iter()
+        .filter_map(|p| to_pixel(*p))
+        .collect();
+    if let Ok(ConvexHull2::Polygon(polygon)) = convex_hull_2d(&outline) {
+        let mut closed = polygon.vertices().to_vec();
+        closed.push(closed[0]);
+        stroke(
+            &mut pixmap,
+            &[closed],
+            Color::from_rgba8(40, 90, 220, 255),
+            width * 1.5,
+        );
+    }
+    // The view frustum's twelve edges: corners whose indices differ in one bit.
+    let corners = eye.frustum().corners().to_owned();
+    let mut edges = Vec::new();
+    for a in 0..8usize {
+        for bit in [1, 2, 4] {
+            let b = a | bit;
+            if b != a {
+                let line: Vec<DVec2> = (0..=EDGE_SAMPLES)
+                    .filter_map(|s| {
+                        let t = f64::from(s) / f64::from(EDGE_SAMPLES);
+                        to_pixel(corners[a].lerp(corners[b], t))
+                    })
+                    .collect();
+                edges.push(line);
+            }
+        }
+    }
+    stroke(
+        &mut pixmap,
+        &edges,
+        Color::from_rgba8(215, 40, 40, 255),
+        width,
+    );
+    let rows: Vec<[u8; 3]> = pixmap
+        .pixels()
+        .iter()
+        .map(|p| {
+            let c = p.demultiply();
+            [c.red(), c.green(), c.blue()]
+        })
+        .collect();
+    // Back to bottom-up rows.
+    rows.chunks(side as usize)
+        .rev()
+        .flatten()
+        .copied()
+        .collect()
+}
+
+/// Strokes polylines (of at least two points) onto the pixmap.
+fn stroke(pixmap: &mut Pixmap, lines: &[Vec<DVec2>], color: Color, width: f64) {
+    let mut builder = PathBuilder::new();
+    for line in lines.iter().filter(|l| l.len() >= 2) {
+        #[expect(clippy::cast_possible_truncation, reason = "pixel coordinates")]
+        let point = |p: DVec2| (p.x as f32, p.y as f32);
+        let (x, y) = point(line[0]);
+        builder.move_to(x, y);
+        for p in &line[1..] {
+            let (x, y) = point(*p);
+            builder.line_to(x, y);
+        }
+    }
+    let Some(path) = builder.finish() else {
+        return;
+    };
+    let mut paint = Paint::default();
+    paint.set_color(color);
+    paint.anti_alias = true;
+    #[expect(clippy::cast_possible_truncation, reason = "a line width in pixels")]
+    let stroke = Stroke {
+        width: width as f32,
+        line_cap: LineCap::Round,
+        ..Stroke::default()
+    };
+    pixmap.stroke_path(&path, &paint, &stroke, Transform::identity(), None);
+}
+
+/// Linear 0–1 values to 8-bit sRGB (the standard transfer function).
+fn to_srgb8(linear: [f64; 3]) -> [u8; 3] {
+    linear.map(|v| {
+        let v = v.clamp(0.0, 1.0);
+        let s = if v <= 0.003_130_8 {
+            12.92 * v
+        } else {
+            1.055 * v.powf(1.0 / 2.4) - 0.055
+        };
+        #[expect(
+            clippy::cast_possible_truncation,
+            clippy::cast_sign_loss,
+            reason = "in [0, 255]"
+        )]
+        let byte = (s * 255.0).round() as u8;
+        byte
+    })
+}

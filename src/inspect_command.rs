@@ -1,0 +1,145 @@
+//! `shadowlab inspect`: what a technique decides for a scene, as text or JSON.
+
+use glam::{DMat4, DVec3};
+use serde_json::{Value, json};
+use shadowlab_shadow::{LightSetup, ShadowMapping, eye_pass, plan_light};
+
+use crate::args::InspectArgs;
+use crate::error::CliError;
+use crate::output::print_line;
+use crate::shadow_settings::resolve;
+
+/// A matrix as 16 numbers, row-major.
+fn row_major(m: &DMat4) -> Vec<f64> {
+    m.transpose().to_cols_array().to_vec()
+}
+
+fn vector(v: DVec3) -> Value {
+    json!([v.x, v.y, v.z])
+}
+
+/// A JSON number, `null` for infinity (the uniform map's λ).
+fn number(x: f64) -> Value {
+    if x.is_finite() { json!(x) } else { Value::Null }
+}
+
+fn setup_json(setup: &LightSetup) -> Value {
+    let (view, projection) = match setup.mapping {
+        ShadowMapping::Projective { view, projection } => {
+            (json!(row_major(&view)), json!(row_major(&projection)))
+        }
+        ShadowMapping::Logarithmic(_) => (Value::Null, Value::Null),
+    };
+    json!({
+        "technique": setup.technique.to_string(),
+        "gamma_degrees": setup.gamma.to_degrees(),
+        "half_fov_degrees": setup.half_fov.to_degrees(),
+        "lambda": setup.warp.map(|w| number(w.lambda)),
+        "n": setup.warp.map(|w| number(w.near_distance)),
+        "warp_depth": setup.warp.map(|w| w.depth),
+        "psm": setup.psm.map(|p| json!({"shift": p.shift, "near": p.near, "inverted": p.inverted, "directional": p.directional})),
+        "focus_body": setup.focus_body.iter().map(|v| vector(*v)).collect::<Vec<_>>(),
+        "view": view,
+        "projection": projection,
+    })
+}
+
+pub(crate) fn run(args: &InspectArgs) -> Result<(), CliError> {
+    let resolved = resolve(&args.shadow)?;
+    let scene = &resolved.scene;
+    let (_, nearest) =
+        eye_pass(scene).map_err(|e| CliError::Failure(anyhow::anyhow!("eye pass: {e}")))?;
+    let mut lights = Vec::new();
+    for (l, light) in scene.lights.iter().enumerate() {
+        let parts = plan_light(
+            scene,
+            light,
+            resolved.technique,
+            resolved.splits,
+            resolved.partitions,
+            nearest,
+        )
+        .map_err(|e| {
+            CliError::Input(format!(
+                "{} with {}, light {l}: {e}",
+                scene.name, resolved.technique
+            ))
+        })?;
+        lights.push(parts);
+    }
+    if args.json {
+        let value = json!({
+            "scene": scene.name,
+            "technique": resolved.technique.to_string(),
+            "nearest_visible_depth": nearest,
+            "lights": lights.iter().map(|parts| json!({
+                "splits": std::iter::once(parts[0].near).chain(parts.iter().map(|p| p.far)).collect::<Vec<_>>(),
+                "partitions": parts.iter().map(|p| setup_json(&p.setup)).collect::<Vec<_>>(),
+            })).collect::<Vec<_>>(),
+        });
+        return print_line(
+            &serde_json::to_string_pretty(&value).map_err(|e| CliError::Failure(e.into()))?,
+        );
+    }
+    print_line(&format!(
+        "scene {}, technique {}",
+        scene.name, resolved.technique
+    ))?;
+    if let Some(d) = nearest {
+        print_line(&format!("nearest visible eye depth {d}"))?;
+    }
+    for (l, parts) in lights.iter().enumerate() {
+        let splits: Vec<String> = std::iter::once(parts[0].near)
+            .chain(parts.iter().map(|p| p.far))
+            .map(|d| format!("{d}"))
+            .collect();
+        print_line(&format!("light {l}: split distances {}", splits.join(", ")))?;
+        for (p, part) in parts.iter().enumerate() {
+            let s = &part.setup;
+            print_line(&format!(
+                "  part {p}: γ = {}°, φ = {}°",
+                s.gamma.to_degrees(),
+                s.half_fov.to_degrees()
+            ))?;
+            if let Some(w) = s.warp {
+                print_line(&format!(
+                    "    λ = {}, n = {}, warp depth d = {}",
+                    w.lambda, w.near_distance, w.depth
+                ))?;
+            }
+            if let Some(psm) = s.psm {
+                print_line(&format!(
+                    "    PSM: shift Δ = {}, near = {}, inverted = {}, directional = {}",
+                    psm.shift, psm.near, psm.inverted, psm.directional
+                ))?;
+            }
+            print_line(&format!(
+                "    focus body B ({} vertices):",
+                s.focus_body.len()
+            ))?;
+            for v in &s.focus_body {
+                print_line(&format!("      {} {} {}", v.x, v.y, v.z))?;
+            }
+            match s.mapping {
+                ShadowMapping::Projective { view, projection } => {
+                    for (name, m) in [("view", view), ("projection", projection)] {
+                        print_line(&format!("    {name} (row-major):"))?;
+                        for row in row_major(&m).chunks(4) {
+                            print_line(&format!(
+                                "      {} {} {} {}",
+                                row[0], row[1], row[2], row[3]
+                            ))?;
+                        }
+                    }
+                }
+                ShadowMapping::Logarithmic(map) => {
+                    print_line(&format!(
+                        "    logarithmic map (not projective), λ = {}",
+                        map.lambda()
+                    ))?;
+                }
+            }
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,110 @@
+//! `shadowlab render`: one scene, one technique, the pictures.
+
+use std::path::PathBuf;
+
+use shadowlab_raster::image_out;
+use shadowlab_shadow::{FrameOptions, render_frame, scene_eye, view};
+
+use crate::args::RenderArgs;
+use crate::error::CliError;
+use crate::output::{ensure_directory, print_line, write_atomic};
+use crate::shadow_settings::resolve;
+
+pub(crate) fn run(args: &RenderArgs) -> Result<(), CliError> {
+    let resolved = resolve(&args.shadow)?;
+    let scene = &resolved.scene;
+    let options = FrameOptions {
+        technique: resolved.technique,
+        resolution: resolved.resolution,
+        format: resolved.format,
+        partitions: resolved.partitions,
+        splits: resolved.splits,
+        lookup: resolved.lookup.clone(),
+    };
+    let frame = render_frame(scene, &options)
+        .map_err(|e| CliError::Input(format!("{} with {}: {e}", scene.name, options.technique)))?;
+    let out = args.out.clone().unwrap_or_else(|| {
+        PathBuf::from("out/render").join(format!("{}-{}", scene.name, options.technique.key()))
+    });
+    let image_failure =
+        |e: shadowlab_raster::RasterError| CliError::Failure(anyhow::anyhow!("{e}"));
+    let mut files = vec![(
+        "eye.png".to_string(),
+        image_out::rgb_png(
+            &view::shade(&frame, scene),
+            scene.camera.width,
+            scene.camera.height,
+        )
+        .map_err(image_failure)?,
+    )];
+    let eye = scene_eye(scene);
+    let single = frame.lights.len() == 1 && frame.lights[0].maps.len() == 1;
+    for (l, shadow) in frame.lights.iter().enumerate() {
+        for (p, (partition, map)) in shadow.maps.iter().enumerate() {
+            let side = map.resolution;
+            let suffix = format!("light{l}-part{p}");
+            files.push((
+                format!("shadowmap-{suffix}.png"),
+                image_out::depth_png16(&map.nearest, side, side).map_err(image_failure)?,
+            ));
+            let name = if single {
+                "lightview.png".to_string()
+            } else {
+                format!("lightview-{suffix}.png")
+            };
+            files.push((
+                name,
+                image_out::rgb_png(&view::light_view(map, &eye), side, side)
+                    .map_err(image_failure)?,
+            ));
+            let setup = &map.setup;
+            let warp = setup.warp.map_or(String::new(), |w| {
+                format!(", λ = {:.6}, n' = {:.6}", w.lambda, w.near_distance)
+            });
+            print_line(&format!(
+                "light {l}, part {p} (eye depths {:.4}–{:.4}): {}, γ = {:.4}°{warp}",
+                partition.near,
+                partition.far,
+                setup.technique,
+                setup.gamma.to_degrees()
+            ))?;
+        }
+    }
+    let visible = frame
+        .eye
+        .triangle
+        .iter()
+        .filter(|t| **t != shadowlab_raster::NO_TRIANGLE)
+        .count();
+    for (l, lit) in frame.lit.iter().enumerate() {
+        let shadowed: f64 = frame
+            .eye
+            .triangle
+            .iter()
+            .zip(lit)
+            .filter(|(t, _)| **t != shadowlab_raster::NO_TRIANGLE)
+            .map(|(_, v)| 1.0 - v)
+            .sum();
+        #[expect(clippy::cast_precision_loss, reason = "a pixel count")]
+        let share = shadowed / visible.max(1) as f64;
+        print_line(&format!(
+            "light {l}: {:.2} % of the visible pixels in shadow",
+            100.0 * share
+        ))?;
+    }
+    let t = frame.timings;
+    print_line(&format!(
+        "time: eye pass {:.2} ms, planning {:.3} ms, shadow pass {:.2} ms, lookup {:.2} ms",
+        t.eye_pass.as_secs_f64() * 1e3,
+        t.planning.as_secs_f64() * 1e3,
+        t.shadow_pass.as_secs_f64() * 1e3,
+        t.lookup.as_secs_f64() * 1e3
+    ))?;
+    ensure_directory(&out, "--out")?;
+    for (file, bytes) in &files {
+        let path = out.join(file);
+        write_atomic(&path, bytes)?;
+        print_line(&path.display().to_string())?;
+    }
+    Ok(())
+}
