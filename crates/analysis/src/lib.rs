@@ -1,0 +1,1 @@
+//! # shadowlab-analysis: what a shadow-map technique costs and buys, measured (work in progress)

@@ -1,0 +1,1 @@
+//! Integration tests of shadowlab-analysis (work in progress).
