@@ -10,6 +10,7 @@
 //! | PSM | Stamminger & Drettakis 2002 | [`psm`] |
 //! | LiSPSM, any parameter rule or engine variant | Wimmer et al. 2004 §3; CAD; GMNPR; production-variants.md | `plan`, `warp`, `frame` |
 //! | logarithmic | LiSPSM §4, Lloyd et al. 2008 | [`logarithmic`] |
+//! | scene-optimized (`optimal`) | CG06 Algorithm 1 (Chong & Gortler 2006) | [`optimal`] |
 //!
 //! Every light-space technique (uniform, LiSPSM, logarithmic) works in LiSPSM's light space
 //! (`shadowlab_hull::LightSpace`: y toward the light, the viewer looking down −z), for spot lights
@@ -18,7 +19,8 @@
 //!
 //! # Conventions
 //! The shadow map's window x runs across the light's view, window y along the warp axis (0 on the
-//! viewer's side), depth away from the light; the depth test is `Less` for every technique.
+//! viewer's side), depth away from the light; the depth test is `Less` for every technique. (The
+//! scene-optimized map has no warp axis: its x and y follow the sides of the samples' rectangle.)
 //! Matrices act on column vectors and produce GL clip space (NDC depth in `[−1, 1]`).
 
 mod error;
@@ -28,6 +30,7 @@ pub mod logarithmic;
 mod lookup;
 mod map;
 pub mod measure;
+pub mod optimal;
 mod plan;
 pub mod psm;
 mod render;

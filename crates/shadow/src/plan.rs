@@ -20,13 +20,22 @@ use crate::{logarithmic, psm};
 /// # Errors
 /// [`ShadowError`] naming why: an empty or flat focus body, a technique not defined for the
 /// configuration (GLPR for γ ≤ φ, the logarithmic map when the eye lies within B's warp-axis
-/// extent, …), or invalid geometry.
+/// extent, …), or invalid geometry. [`Technique::Optimal`] is always [`ShadowError::NotDefined`]
+/// here: it needs the scene's geometry ([`crate::plan_light`], [`crate::optimal::plan`]).
 pub fn plan(input: &PlanInput, technique: Technique) -> Result<LightSetup, ShadowError> {
     match technique {
         Technique::Uniform | Technique::Lispsm(_) => light_space_warp(input, technique),
         Technique::UniformLimited => uniform_limited(input),
         Technique::Psm => psm::plan(input),
         Technique::Logarithmic => logarithmic::plan(input),
+        Technique::Optimal => Err(ShadowError::NotDefined {
+            technique: "optimal",
+            reason:
+                "the scene-optimized map needs the scene's geometry (a low-resolution eye pass \
+                     and its shadows), not a plan input alone: plan it with plan_light or \
+                     optimal::plan"
+                    .into(),
+        }),
     }
 }
 
@@ -332,6 +341,25 @@ pub fn plan_partitions(
     splits: Splits,
     count: usize,
 ) -> Result<Vec<Partition>, ShadowError> {
+    partition_inputs(input, splits, count)?
+        .into_iter()
+        .map(|(near, far, part)| {
+            Ok(Partition {
+                near,
+                far,
+                setup: plan(&part, technique)?,
+            })
+        })
+        .collect()
+}
+
+/// The sub-frusta of z-partitioning: the view's depth range split into `count` parts by `splits`,
+/// each as `(near, far, input)` with the eye's projection cut to `[near, far]`.
+pub(crate) fn partition_inputs(
+    input: &PlanInput,
+    splits: Splits,
+    count: usize,
+) -> Result<Vec<(f64, f64, PlanInput)>, ShadowError> {
     let projection = input.eye.projection;
     let range = DepthRange::new(projection.near(), projection.far())?;
     let gamma = || {
@@ -356,11 +384,7 @@ pub fn plan_partitions(
             let mut part = *input;
             part.eye.projection =
                 Perspective::new(projection.fov_y(), projection.aspect(), pair[0], pair[1])?;
-            Ok(Partition {
-                near: pair[0],
-                far: pair[1],
-                setup: plan(&part, technique)?,
-            })
+            Ok((pair[0], pair[1], part))
         })
         .collect()
 }

@@ -16,6 +16,7 @@ use crate::error::ShadowError;
 use crate::input::{Eye, FocusPolicy, LightSource, PlanInput};
 use crate::lookup::Lookup;
 use crate::map::{MapOptions, ShadowMap};
+use crate::optimal::{self, OptimalOptions};
 use crate::plan::{Partition, Splits, plan_partitions};
 use crate::setup::ShadowMapping;
 use crate::technique::Technique;
@@ -117,10 +118,12 @@ pub fn scene_eye(scene: &Scene) -> Eye {
 }
 
 /// Plans one light of `scene`: `partitions` z-partitions split by `splits` (one: the whole view),
-/// each with `technique`, PSM's near plane at `nearest_visible_depth`.
+/// each with `technique`, PSM's near plane at `nearest_visible_depth`. [`Technique::Optimal`] is
+/// planned from the scene itself with the default [`OptimalOptions`]: a low-resolution eye pass,
+/// then each partition optimized on its own samples ([`crate::optimal::plan_partitions`]).
 ///
 /// # Errors
-/// As [`plan_partitions`]; an invalid scene box.
+/// As [`plan_partitions`] (or [`crate::optimal::plan_partitions`]); an invalid scene box.
 pub fn plan_light(
     scene: &Scene,
     light: &SceneLight,
@@ -137,6 +140,18 @@ pub fn plan_light(
         nearest_visible_depth,
         focus: FocusPolicy::Scene,
     };
+    if technique == Technique::Optimal {
+        return Ok(optimal::plan_partitions(
+            scene,
+            &input,
+            splits,
+            partitions.max(1),
+            &OptimalOptions::default(),
+        )?
+        .into_iter()
+        .map(|(partition, _)| partition)
+        .collect());
+    }
     plan_partitions(&input, technique, splits, partitions.max(1))
 }
 

@@ -24,6 +24,11 @@ pub enum Technique {
     /// The ideal parameterisation of LiSPSM §4: `s = ln(z/zn)/ln(zf/zn)` along the view axis,
     /// computed exactly in software (it is not a projective map).
     Logarithmic,
+    /// Chong and Gortler's scene-optimized shadow map (CG06 Algorithm 1): P chosen by gradient
+    /// descent to minimise the texel footprint at the pixels near shadow boundaries of a
+    /// low-resolution eye pass ([`crate::optimal`]). Needs the scene's geometry, so it is planned by
+    /// [`crate::plan_light`] or [`crate::optimal::plan`], not by [`crate::plan`].
+    Optimal,
 }
 
 /// How LiSPSM's `n` (or λ = n/d) is chosen.
@@ -109,10 +114,16 @@ impl WarpChoice {
 
 impl Technique {
     /// The technique keys, in the order outputs list them.
-    pub const KEYS: [&'static str; 5] =
-        ["uniform", "uniform_limited", "psm", "lispsm", "logarithmic"];
+    pub const KEYS: [&'static str; 6] = [
+        "uniform",
+        "uniform_limited",
+        "psm",
+        "lispsm",
+        "logarithmic",
+        "optimal",
+    ];
 
-    /// Its key: `uniform`, `uniform_limited`, `psm`, `lispsm`, `logarithmic`.
+    /// Its key: `uniform`, `uniform_limited`, `psm`, `lispsm`, `logarithmic`, `optimal`.
     #[must_use]
     pub fn key(self) -> &'static str {
         match self {
@@ -121,6 +132,7 @@ impl Technique {
             Self::Psm => "psm",
             Self::Lispsm(_) => "lispsm",
             Self::Logarithmic => "logarithmic",
+            Self::Optimal => "optimal",
         }
     }
 
@@ -136,6 +148,7 @@ impl Technique {
             "psm" => Self::Psm,
             "lispsm" => Self::Lispsm(WarpChoice::PAPER),
             "logarithmic" => Self::Logarithmic,
+            "optimal" => Self::Optimal,
             _ => {
                 return Err(format!(
                     "unknown technique {key:?}; known: {}",

@@ -12,4 +12,5 @@ mod closed_forms;
 mod golden;
 mod limits;
 mod lookups;
+mod optimal;
 mod support;
