@@ -1,1 +1,44 @@
-//! # shadowlab-analysis: what a shadow-map technique costs and buys, measured (work in progress)
+//! # shadowlab-analysis: what a shadow-map technique costs and buys, measured
+//!
+//! `shadow` makes a technique's frame; this crate holds it against the truth and measures its
+//! aliasing. It never re-implements a technique.
+//!
+//! | module | what | source |
+//! |---|---|---|
+//! | [`truth`] | whether each visible point is lit by each light: exactly, one shadow ray per pixel ([`truth::exact_truth`], `shadowlab-trace`), or from a very fine uniform map ([`truth::map_truth`]) | CG06 §5 (map truth) |
+//! | [`classify`] | falsely lit and falsely shadowed pixels of a frame against a truth, and their picture | — |
+//! | [`aliasing`] | the texel's footprint on screen per pixel from the Jacobian of screen → shadow map on the visible surface, split into perspective and projection parts | CG06 eqs. 4–6, LiSPSM eq. 1; formulas.md §1, §6 |
+//! | [`images`] | heat maps of per-pixel values on a logarithmic viridis scale | — |
+//!
+//! ```no_run
+//! use shadowlab_analysis::{aliasing, classify, truth};
+//! use shadowlab_shadow::{FrameOptions, render_frame};
+//!
+//! # fn run(options: &FrameOptions) -> Result<(), shadowlab_analysis::AnalysisError> {
+//! let scene = shadowlab_scene::builtin_scene("outdoor").expect("a built-in scene");
+//! let frame = render_frame(&scene, options)?;
+//! let bvh = truth::scene_bvh(&scene)?;
+//! let exact = truth::exact_truth(&scene, &frame.eye, &bvh)?;
+//! let wrong = classify::misclassification(&exact, &frame.lit);
+//! println!("{:.3} % misclassified", wrong.percentage());
+//! let (partition, map) = &frame.lights[0].maps[0];
+//! let footprints = aliasing::footprints(&partition.setup, map.resolution, &frame.eye, &scene.camera);
+//! let worst = aliasing::stats(footprints.iter().flatten().map(|f| f.total));
+//! println!("max {} pixels per texel, p99 {}", worst.max, worst.p99);
+//! # Ok(())
+//! # }
+//! ```
+//!
+//! # Conventions
+//! Per-pixel vectors are row-major with row 0 at the bottom, like the eye image (`shadowlab-raster`);
+//! per-light vectors follow the scene's light order. Every result is the same on any thread count.
+
+#![deny(missing_docs)]
+
+pub mod aliasing;
+pub mod classify;
+mod error;
+pub mod images;
+pub mod truth;
+
+pub use error::AnalysisError;

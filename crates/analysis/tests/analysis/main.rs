@@ -1,1 +1,15 @@
-//! Integration tests of shadowlab-analysis (work in progress).
+//! Integration tests of `shadowlab-analysis`, one binary (ripgrep's layout):
+//! - `truth`: hand-built cases (under the box or beside it, surfaces facing away, a spot's cone and
+//!   segment), exact against map truth (bounded disagreement at edges), thread counts, errors;
+//! - `classify`: an aligned uniform map misclassifies nothing; counting and the difference
+//!   image as documented;
+//! - `aliasing`: the footprint against closed forms (a tilted plane, an independent construction
+//!   per pixel, `measure`'s view-axis error at 90° and at any γ), statistics, thread counts;
+//! - `images`: the heat map's colours and scale;
+//! - `support`: scenes, hand-built eye images, the seeded configuration.
+
+mod aliasing;
+mod classify;
+mod images;
+mod support;
+mod truth;

@@ -1,0 +1,317 @@
+//! The aliasing a shadow map shows on screen, measured per pixel: how many pixels one texel
+//! covers, from the Jacobian of the screen → shadow-map mapping on the visible surface (CG06
+//! eqs. 4–6; formulas.md §6.3–6.5), split into LiSPSM's perspective and projection parts (LiSPSM
+//! eq. 1; formulas.md §1).
+//!
+//! # The Jacobian
+//! Let `x = (x₁, x₂)` be window coordinates of the eye image in pixels (x right, y up), `X(x)` the
+//! point where the eye ray through `x` meets the **surface plane** through the visible point `X₀`
+//! with unit normal `n`, and `u(X) = res·(window_x, window_y)` the shadow map's texel coordinates
+//! of `X` (`ShadowMapping::window`, `res` texels per side). The composite map's Jacobian is
+//!
+//! `J = ∂u/∂x = Du(X₀) · ∂X/∂x`   (texels per pixel; CG06 eq. 4 with `x₃` the depth of the plane)
+//!
+//! * `∂X/∂x_j = D_j − (X₀ − e)·(D_j·n)/((X₀ − e)·n)`, with `e` the eye and
+//!   `D₁ = right·(2 tan φ_x/W)·z`, `D₂ = up·(2 tan φ_y/H)·z` one pixel's step of the eye ray at
+//!   the point's eye depth `z`: the ray–plane intersection differentiated, exact. The plane is the
+//!   one the eye image's normal gives (the facet's plane on a flat mesh, the smooth surface on a
+//!   smooth one), so nothing is differenced across an edge, as neighbouring pixels would be.
+//! * `Du·t` for a projective map (every technique but the logarithmic one) exactly: with
+//!   `p = M·(X, 1)` and `ṗ = M·(t, 0)`, `d(p_k/p_w) = (ṗ_k p_w − p_k ṗ_w)/p_w²` — CG06 eq. 5; for the
+//!   logarithmic map by central differences along `t` on the plane, Richardson-extrapolated, with
+//!   a step of [`STEP`] times the point's distance from the eye (the map's own length scale).
+//!
+//! # The footprint
+//! `J⁻¹` maps a texel step to a pixel step; the image of one texel on screen is (to first order)
+//! the parallelogram spanned by `J⁻¹`'s columns. The **total** footprint is the length of that
+//! image along its longest direction, the largest singular value of `J⁻¹`:
+//!
+//! `total = σ_max(J⁻¹) = 1/σ_min(J) = σ_max(J)/|det J|`, with
+//! `σ_max(J) = ½(√((a+d)² + (c−b)²) + √((a−d)² + (b+c)²))` for `J = [[a, b], [c, d]]`.
+//!
+//! It is rotation-invariant (it does not depend on how texels and pixels happen to be aligned),
+//! it is the undersampling that shows as jagged edges (the worst direction, where CG06's L2
+//! metric `‖J⁻¹‖_F² = ‖J‖_F²/det²J`, eq. 6, averages both), and in the papers' 1-D setting, where
+//! `J` is diagonal in the map's and the screen's axes, it is their error along the worse axis.
+//! Total > 1 is undersampling (a texel spans more than a pixel), < 1 oversampling.
+//!
+//! The **projection** part is `cos α / cos β` (LiSPSM's letters, CONVENTIONS.md): α between `n`
+//! and the ray to the eye, β between `n` and the light's ray. The light's ray is read off the map
+//! itself — the direction along which its `u` does not change, the kernel of `Du` (found from
+//! `Du` on `∂X/∂x₁`, `∂X/∂x₂` and `n`) — so no light needs to be passed and PSM's post-perspective
+//! light is handled like any other. The **perspective** part is `total / projection`.
+//!
+//! # Against the 1-D analysis
+//! On the view axis at eye depth `z`, for a normal in the plane of the light and view directions
+//! (so `J` is diagonal: the map's warp axis y against the screen's axis in that plane), the texel
+//! covers along the warp axis
+//!
+//! `‖J⁻¹·e_y‖ = (dp/ds)·sin γ·(cos α/cos β)·res_c/(2 tan φ·res)`
+//!
+//! pixels, with `dp/ds = (1/z)·dz/ds` what `shadowlab_shadow::measure::view_axis_error` measures
+//! and `res_c` the image's pixels across `2 tan φ` in that plane — CAD's `m_z` (eq. 6) times
+//! `sin γ·cos α/cos β`. At γ = 90°, LiSPSM's configuration (§4.1, Fig. 4), with `cos α = cos β`
+//! it is exactly `view_axis_error` in pixels per texel; the tests hold it to 1e-6. The `sin γ`
+//! is not in the papers: a texel's shaft of light crosses the view axis over `dz` but is only
+//! `dz·sin γ` wide, and it is the width that lands on the surface. This is why the 1-D error is
+//! unbounded at γ = 0 while a surface facing both the eye and the light sees a finite texel.
+//!
+//! The factorisation `total = perspective × projection` is LiSPSM eq. 1 exactly in that 1-D
+//! setting; in general the projection factor stretches one direction of the texel's image and
+//! σ_max may pick another, so there the perspective part is a definition (the quotient), not a
+//! separate measurement.
+
+use glam::{DMat2, DMat4, DVec2, DVec3};
+use rayon::prelude::*;
+use shadowlab_raster::{EyeImage, NO_TRIANGLE};
+use shadowlab_scene::Camera;
+use shadowlab_shadow::{Eye, LightSetup, ShadowMapping, measure};
+
+/// Relative step of the central differences for non-projective maps, in units of the point's
+/// distance from the eye (as `shadowlab_shadow::measure` steps along the view axis): with
+/// Richardson extrapolation the truncation error is of order `STEP⁴` and the rounding error of
+/// order `ε/STEP`, both far below the 1e-6 the tests ask for.
+pub const STEP: f64 = 1e-3;
+
+/// How many pixels one shadow-map texel covers on screen, and its two factors (module docs).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Footprint {
+    /// Pixels per texel along the texel image's longest direction: `σ_max(J⁻¹)`.
+    pub total: f64,
+    /// `total / projection`.
+    pub perspective: f64,
+    /// `cos α / cos β`: α between the normal and the ray to the eye, β between the normal and the
+    /// light's ray.
+    pub projection: f64,
+}
+
+/// The local geometry of one visible point: `J`, `cos α`, `cos β`.
+struct Local {
+    jacobian: DMat2,
+    cos_alpha: f64,
+    cos_beta: f64,
+}
+
+/// A mapping prepared for many derivatives.
+enum Prepared<'a> {
+    /// World → GL clip space.
+    Projective(DMat4),
+    /// Evaluated point by point and differenced.
+    General(&'a ShadowMapping),
+}
+
+impl<'a> Prepared<'a> {
+    fn new(mapping: &'a ShadowMapping) -> Self {
+        match mapping.clip_from_world() {
+            Some(matrix) => Self::Projective(matrix),
+            None => Self::General(mapping),
+        }
+    }
+
+    /// The derivative of the window coordinates `(x, y)` at `point` along `direction`
+    /// (`direction` per unit, window units); `scale` sets the difference step of a general map.
+    /// `None` where the mapping does not map the point (or a difference point).
+    fn derivative(&self, point: DVec3, direction: DVec3, scale: f64) -> Option<DVec2> {
+        match self {
+            Self::Projective(m) => {
+                let (p, dp) = (*m * point.extend(1.0), *m * direction.extend(0.0));
+                if p.w <= 0.0 {
+                    return None;
+                }
+                // Window = (ndc + 1)/2: half the derivative of p_k/p_w.
+                let d = |k: usize| 0.5 * (dp[k] * p.w - p[k] * dp.w) / (p.w * p.w);
+                Some(DVec2::new(d(0), d(1)))
+            }
+            Self::General(mapping) => {
+                let length = direction.length();
+                let unit = direction / length;
+                let at = |s: f64| {
+                    mapping
+                        .window(point + unit * s)
+                        .map(|w| DVec2::new(w.x, w.y))
+                };
+                let central = |h: f64| Some((at(h)? - at(-h)?) / (2.0 * h));
+                let h = STEP * scale;
+                // Richardson: (4·D(h/2) − D(h))/3 cancels the h² term.
+                let d = (central(0.5 * h)? * 4.0 - central(h)?) / 3.0;
+                Some(d * length)
+            }
+        }
+    }
+}
+
+/// `J`, `cos α` and `cos β` at `point` with `normal` (module docs); `None` where undefined.
+fn local(
+    mapping: &Prepared<'_>,
+    resolution: u32,
+    camera: &Camera,
+    point: DVec3,
+    normal: DVec3,
+) -> Option<Local> {
+    let n = normal.try_normalize()?;
+    let to_point = point - camera.pose.eye();
+    let depth = to_point.dot(camera.pose.forward());
+    let facing = to_point.dot(n);
+    if depth <= 0.0 || facing == 0.0 || !facing.is_finite() {
+        return None;
+    }
+    let tan_y = camera.projection.tan_half_fov_y();
+    let tan_x = tan_y * camera.projection.aspect();
+    // One pixel's step of the eye ray at the point's depth, then onto the plane.
+    let across = camera.pose.right() * (2.0 * tan_x / f64::from(camera.width) * depth);
+    let up = camera.pose.up() * (2.0 * tan_y / f64::from(camera.height) * depth);
+    let on_plane = |step: DVec3| step - to_point * (step.dot(n) / facing);
+    let (t1, t2) = (on_plane(across), on_plane(up));
+    let distance = to_point.length();
+    let texels = f64::from(resolution);
+    let d1 = mapping.derivative(point, t1, distance)? * texels;
+    let d2 = mapping.derivative(point, t2, distance)? * texels;
+    let dn = mapping.derivative(point, n, distance)? * texels;
+    // The light's ray: c·(t1, t2, n) with Du·(t1, t2, n)·c = 0, c ⟂ both rows of Du there.
+    let c = DVec3::new(d1.x, d2.x, dn.x).cross(DVec3::new(d1.y, d2.y, dn.y));
+    let ray = t1 * c.x + t2 * c.y + n * c.z;
+    let local = Local {
+        jacobian: DMat2::from_cols(d1, d2),
+        cos_alpha: facing.abs() / distance,
+        cos_beta: ray.dot(n).abs() / ray.length(),
+    };
+    (local.jacobian.is_finite() && local.cos_beta.is_finite()).then_some(local)
+}
+
+/// The Jacobian `J = ∂u/∂x` (texels per pixel; columns `∂u/∂x₁`, `∂u/∂x₂`) of the map from the
+/// window coordinates of `camera`'s image to the texel coordinates of `setup`'s map of side
+/// `resolution`, at the visible point `point` on the surface plane with normal `normal` (module
+/// docs). `None` where undefined: a zero normal, a point not in front of the eye, a plane seen
+/// edge-on, a point the mapping does not map.
+#[must_use]
+pub fn texel_jacobian(
+    setup: &LightSetup,
+    resolution: u32,
+    camera: &Camera,
+    point: DVec3,
+    normal: DVec3,
+) -> Option<DMat2> {
+    local(
+        &Prepared::new(&setup.mapping),
+        resolution,
+        camera,
+        point,
+        normal,
+    )
+    .map(|l| l.jacobian)
+}
+
+/// The footprint of `setup`'s texels (map side `resolution`) at the visible point `point` with
+/// surface normal `normal`, seen by `camera` (its pose, projection and image size). `None` where
+/// [`texel_jacobian`] is undefined or the plane is edge-on to the light (`cos β = 0`, where the
+/// footprint is unbounded and the factors undefined).
+#[must_use]
+pub fn footprint(
+    setup: &LightSetup,
+    resolution: u32,
+    camera: &Camera,
+    point: DVec3,
+    normal: DVec3,
+) -> Option<Footprint> {
+    let local = local(
+        &Prepared::new(&setup.mapping),
+        resolution,
+        camera,
+        point,
+        normal,
+    )?;
+    footprint_of(&local)
+}
+
+/// The footprint from the local geometry.
+fn footprint_of(local: &Local) -> Option<Footprint> {
+    let j = local.jacobian;
+    let (a, b, c, d) = (j.x_axis.x, j.y_axis.x, j.x_axis.y, j.y_axis.y);
+    let sigma_max = 0.5 * ((a + d).hypot(c - b) + (a - d).hypot(b + c));
+    let total = sigma_max / j.determinant().abs();
+    let projection = local.cos_alpha / local.cos_beta;
+    (total.is_finite() && projection.is_finite() && projection > 0.0).then(|| Footprint {
+        total,
+        perspective: total / projection,
+        projection,
+    })
+}
+
+/// [`footprint`] at every pixel of `eye` (the eye pass of `camera`, which gives the pixel size)
+/// with its position and interpolated normal; `None` where nothing is visible or the footprint is
+/// undefined. Row-major, row 0 at the bottom; parallel, and the same on any thread count.
+#[must_use]
+pub fn footprints(
+    setup: &LightSetup,
+    resolution: u32,
+    eye: &EyeImage,
+    camera: &Camera,
+) -> Vec<Option<Footprint>> {
+    let mapping = Prepared::new(&setup.mapping);
+    eye.triangle
+        .par_iter()
+        .zip(&eye.position)
+        .zip(&eye.normal)
+        .map(|((&triangle, &point), &normal)| {
+            if triangle == NO_TRIANGLE {
+                return None;
+            }
+            footprint_of(&local(&mapping, resolution, camera, point, normal)?)
+        })
+        .collect()
+}
+
+/// Summary of a set of aliasing values.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AliasingStats {
+    /// The largest value.
+    pub max: f64,
+    /// The 99th percentile by nearest rank: the `⌈0.99·count⌉`-th smallest value.
+    pub p99: f64,
+    /// The arithmetic mean (summed in ascending order).
+    pub mean: f64,
+    /// How many values were summarised.
+    pub count: u64,
+}
+
+/// The maximum, 99th percentile (nearest rank: the `⌈0.99·n⌉`-th smallest of `n` values, no
+/// interpolation) and mean of `values`, NaNs left out (and not counted). Deterministic: the values
+/// are sorted (`f64::total_cmp`) and summed in that order, so the result depends on the multiset
+/// of values only, not on their order. With no values, every field is 0.
+#[must_use]
+pub fn stats(values: impl Iterator<Item = f64>) -> AliasingStats {
+    let mut sorted: Vec<f64> = values.filter(|v| !v.is_nan()).collect();
+    sorted.sort_unstable_by(f64::total_cmp);
+    let Some(&max) = sorted.last() else {
+        return AliasingStats {
+            max: 0.0,
+            p99: 0.0,
+            mean: 0.0,
+            count: 0,
+        };
+    };
+    let n = sorted.len();
+    let rank = (99 * n).div_ceil(100);
+    #[expect(
+        clippy::cast_precision_loss,
+        reason = "pixel counts are far below 2^53"
+    )]
+    let mean = sorted.iter().sum::<f64>() / n as f64;
+    AliasingStats {
+        max,
+        p99: sorted[rank - 1],
+        mean,
+        count: n as u64,
+    }
+}
+
+/// `dp/ds` measured along `eye`'s view axis at each of `depths`
+/// (`shadowlab_shadow::measure::view_axis_error`: `(1/z)·dz/ds`, the map spanning `[0, 1]`), to
+/// plot over the closed forms of `shadowlab-params`; `None` where the map does not map the point.
+#[must_use]
+pub fn view_axis_curve(setup: &LightSetup, eye: &Eye, depths: &[f64]) -> Vec<(f64, Option<f64>)> {
+    depths
+        .iter()
+        .map(|&z| (z, measure::view_axis_error(&setup.mapping, eye, z)))
+        .collect()
+}

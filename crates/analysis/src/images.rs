@@ -1,0 +1,139 @@
+//! Pictures of per-pixel measurements: a heat map on a logarithmic scale.
+//!
+//! # The colour map
+//! viridis (Stéfan van der Walt and Nathaniel Smith, 2015; matplotlib's default, released CC0),
+//! perceptually uniform, readable in greyscale and by colour-blind readers. It is given here by
+//! ten control points, the colours at `k/9` for `k = 0, …, 9` as R's `viridisLite::viridis(10)`
+//! lists them (`#440154` … `#FDE725`), and interpolated linearly in sRGB between them; dark
+//! purple is the low end, yellow the high end, and the lightness rises monotonically.
+//!
+//! # The scale (legend-free, so stated here)
+//! A value `v` sits at `f = (log v − log low)/(log high − log low)` along the map, clamped to
+//! `[0, 1]`: below `low` it is the darkest colour, above `high` (and +∞) the brightest. For
+//! footprints, [`HeatScale::PIXELS_PER_TEXEL`] spans 0.1 to 100 pixels per texel over three
+//! decades, so each decade takes a third of the map: one pixel per texel (neither under- nor
+//! oversampled) is at `f = 1/3`, the control point `#31688E` (blue); ten pixels per texel at
+//! `2/3`, the control point `#35B779` (green). Pixels without a value (nothing visible, or the
+//! value undefined or NaN) are [`NO_VALUE`].
+
+use crate::error::AnalysisError;
+
+/// viridis at `k/9`, `k = 0, …, 9` (see the module docs for the source).
+const VIRIDIS: [[u8; 3]; 10] = [
+    [0x44, 0x01, 0x54],
+    [0x48, 0x28, 0x78],
+    [0x3E, 0x4A, 0x89],
+    [0x31, 0x68, 0x8E],
+    [0x26, 0x82, 0x8E],
+    [0x1F, 0x9E, 0x89],
+    [0x35, 0xB7, 0x79],
+    [0x6D, 0xCD, 0x59],
+    [0xB4, 0xDE, 0x2C],
+    [0xFD, 0xE7, 0x25],
+];
+
+/// The colour of pixels without a value: mid grey, which viridis never takes (its greys are
+/// tinted), so holes stay visible.
+pub const NO_VALUE: [u8; 3] = [128, 128, 128];
+
+/// A logarithmic scale from `low` to `high`.
+///
+/// # Guarantees
+/// `0 < low < high < ∞`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct HeatScale {
+    low: f64,
+    high: f64,
+}
+
+impl HeatScale {
+    /// 0.1 to 100 pixels per texel: the range of footprints worth telling apart (module docs).
+    pub const PIXELS_PER_TEXEL: Self = Self {
+        low: 0.1,
+        high: 100.0,
+    };
+
+    /// The logarithmic scale from `low` to `high`.
+    ///
+    /// # Errors
+    /// [`AnalysisError::HeatScale`] unless `0 < low < high < ∞`.
+    pub fn log(low: f64, high: f64) -> Result<Self, AnalysisError> {
+        if low > 0.0 && low < high && high.is_finite() {
+            Ok(Self { low, high })
+        } else {
+            Err(AnalysisError::HeatScale { low, high })
+        }
+    }
+
+    /// The value at the darkest colour.
+    #[must_use]
+    pub fn low(&self) -> f64 {
+        self.low
+    }
+
+    /// The value at the brightest colour.
+    #[must_use]
+    pub fn high(&self) -> f64 {
+        self.high
+    }
+
+    /// Where `value` sits along the map, in `[0, 1]` (module docs); `None` for NaN.
+    #[must_use]
+    pub fn fraction(&self, value: f64) -> Option<f64> {
+        if value.is_nan() {
+            return None;
+        }
+        if value <= self.low {
+            return Some(0.0);
+        }
+        let f = (value / self.low).ln() / (self.high / self.low).ln();
+        Some(f.min(1.0))
+    }
+}
+
+/// The colour map at `fraction ∈ [0, 1]` (clamped): viridis, linear in sRGB between its control
+/// points.
+#[must_use]
+pub fn colour(fraction: f64) -> [u8; 3] {
+    let last = VIRIDIS.len() - 1;
+    #[expect(clippy::cast_precision_loss, reason = "ten control points")]
+    let position = fraction.clamp(0.0, 1.0) * last as f64;
+    #[expect(
+        clippy::cast_possible_truncation,
+        clippy::cast_sign_loss,
+        reason = "floor of a value in [0, 9]"
+    )]
+    let k = (position.floor() as usize).min(last - 1);
+    #[expect(clippy::cast_precision_loss, reason = "ten control points")]
+    let t = position - k as f64;
+    let (a, b) = (VIRIDIS[k], VIRIDIS[k + 1]);
+    std::array::from_fn(|c| {
+        let value = f64::from(a[c]) + t * (f64::from(b[c]) - f64::from(a[c]));
+        #[expect(
+            clippy::cast_possible_truncation,
+            clippy::cast_sign_loss,
+            reason = "between two u8 values"
+        )]
+        let byte = value.round() as u8;
+        byte
+    })
+}
+
+/// `values` (row-major, `width × height`, row 0 at the bottom) as colours on `scale`: 8-bit sRGB in
+/// the same layout, [`NO_VALUE`] where a value is `None` or NaN.
+///
+/// # Panics
+/// If `values` does not hold `width × height` values.
+#[must_use]
+pub fn heatmap(values: &[Option<f64>], width: u32, height: u32, scale: HeatScale) -> Vec<[u8; 3]> {
+    assert_eq!(
+        values.len(),
+        width as usize * height as usize,
+        "heatmap: {} values for a {width} × {height} image",
+        values.len()
+    );
+    values
+        .iter()
+        .map(|v| v.and_then(|v| scale.fraction(v)).map_or(NO_VALUE, colour))
+        .collect()
+}

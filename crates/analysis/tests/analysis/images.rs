@@ -1,0 +1,84 @@
+//! The heat map: viridis at its control points, the logarithmic scale's documented positions,
+//! monotone lightness, holes in grey, and the scale's validation.
+
+use shadowlab_analysis::AnalysisError;
+use shadowlab_analysis::images::{HeatScale, NO_VALUE, colour, heatmap};
+
+/// Relative luminance of an sRGB colour (ITU-R BT.709 weights on linearised channels).
+fn luminance(c: [u8; 3]) -> f64 {
+    let linear = |v: u8| {
+        let v = f64::from(v) / 255.0;
+        if v <= 0.04045 {
+            v / 12.92
+        } else {
+            ((v + 0.055) / 1.055).powf(2.4)
+        }
+    };
+    0.2126 * linear(c[0]) + 0.7152 * linear(c[1]) + 0.0722 * linear(c[2])
+}
+
+/// Claim: the map's ends and control points are viridis's published colours, and its lightness
+/// rises strictly from end to end (it reads in greyscale).
+#[test]
+fn the_colour_map_is_viridis_and_rises_in_lightness() {
+    assert_eq!(colour(0.0), [0x44, 0x01, 0x54]);
+    assert_eq!(colour(1.0), [0xFD, 0xE7, 0x25]);
+    assert_eq!(colour(4.0 / 9.0), [0x26, 0x82, 0x8E]);
+    assert_eq!(colour(-3.0), colour(0.0));
+    assert_eq!(colour(7.0), colour(1.0));
+    let lightness: Vec<f64> = (0..=90)
+        .map(|k| luminance(colour(f64::from(k) / 90.0)))
+        .collect();
+    assert!(lightness.windows(2).all(|w| w[0] < w[1]), "{lightness:?}");
+}
+
+/// Claim: on the 0.1–100 pixels-per-texel scale one pixel per texel sits at a third of the map and
+/// ten at two thirds (the control points `#31688E` and `#35B779`); values beyond the ends clamp,
+/// +∞ is the top, `None` and NaN are grey; rows keep their order (row 0 at the bottom in and out).
+#[test]
+fn the_scale_puts_values_where_documented() {
+    let scale = HeatScale::PIXELS_PER_TEXEL;
+    assert!((scale.fraction(1.0).unwrap() - 1.0 / 3.0).abs() < 1e-15);
+    assert!((scale.fraction(10.0).unwrap() - 2.0 / 3.0).abs() < 1e-15);
+    let values = [
+        Some(1.0),
+        Some(10.0),
+        Some(0.01),
+        Some(f64::INFINITY),
+        None,
+        Some(f64::NAN),
+    ];
+    assert_eq!(
+        heatmap(&values, 3, 2, scale),
+        [
+            [0x31, 0x68, 0x8E],
+            [0x35, 0xB7, 0x79],
+            [0x44, 0x01, 0x54],
+            [0xFD, 0xE7, 0x25],
+            NO_VALUE,
+            NO_VALUE
+        ]
+    );
+}
+
+/// Claim: a scale must be `0 < low < high < ∞`.
+#[test]
+fn bad_scales_are_errors() {
+    assert!(HeatScale::log(1e-3, 1e3).is_ok());
+    for (low, high) in [
+        (0.0, 1.0),
+        (-1.0, 1.0),
+        (2.0, 1.0),
+        (1.0, 1.0),
+        (1.0, f64::INFINITY),
+        (f64::NAN, 1.0),
+    ] {
+        assert!(
+            matches!(
+                HeatScale::log(low, high),
+                Err(AnalysisError::HeatScale { .. })
+            ),
+            "{low}, {high}"
+        );
+    }
+}
