@@ -59,6 +59,7 @@ pub(crate) fn run(args: &CompareArgs) -> Result<(), CliError> {
             partitions: 1,
             splits: Splits::Uniform,
             lookup: Lookup::new(Bias::DEFAULT, Filter::Nearest),
+            snap_texels: 0,
         };
         let k = u32::try_from(k).unwrap_or(0);
         let (x, y) = (

@@ -20,6 +20,7 @@ pub(crate) fn run(args: &RenderArgs) -> Result<(), CliError> {
         partitions: resolved.partitions,
         splits: resolved.splits,
         lookup: resolved.lookup.clone(),
+        snap_texels: 0,
     };
     let frame = render_frame(scene, &options)
         .map_err(|e| CliError::Input(format!("{} with {}: {e}", scene.name, options.technique)))?;

@@ -35,6 +35,7 @@ mod plan;
 pub mod psm;
 mod render;
 mod setup;
+mod snap;
 mod technique;
 pub mod view;
 mod warp;
@@ -45,7 +46,9 @@ pub use lookup::{Bias, DEFAULT_DISK_SEED, DEFAULT_MIN_VARIANCE, Filter, Lookup};
 pub use map::{MapOptions, ShadowMap};
 pub use plan::{Partition, Splits, plan, plan_partitions};
 pub use render::{
-    Frame, FrameOptions, LightShadow, Timings, eye_pass, plan_light, render_frame, scene_eye,
+    Frame, FrameOptions, LightShadow, Shadows, Timings, eye_pass, plan_light, render_frame,
+    render_shadows, scene_eye,
 };
 pub use setup::{LightSetup, PsmReport, ShadowMapping, WarpReport};
+pub use snap::snap_to_texels;
 pub use technique::{ProductionVariant, Technique, WarpChoice};

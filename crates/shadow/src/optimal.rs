@@ -65,7 +65,7 @@
 //! From the initial map's `p̃_4` (the spot's axis; `(0, 0, 0, 1)` for a directional light):
 //! 1. **Affine part**: the samples are projected by the candidate P, the minimum-area rectangle of
 //!    their convex hull is found ([`shadowlab_hull::MinAreaRect`], rotating calipers, §2.2 and
-//!    [FS75]), and rows 1 and 2 map it onto the middle `1 − 2·border` of the map on each axis
+//!    Freeman & Shapira 1975), and rows 1 and 2 map it onto the middle `1 − 2·border` of the map on each axis
 //!    ([`BORDER`], §4: "map the light's frustum into a bordered region of the shadow map …
 //!    assuming the border is unusable"; the paper gives no width). The hull is computed once, on a
 //!    fixed chart of the light's image plane, and each candidate maps its vertices: a projective map
@@ -745,8 +745,8 @@ pub struct OptimalReport {
     /// frustum; `None` if there is no descent (below) or h is not finite for it.
     pub uniform_limited_h: Option<f64>,
     /// h at the initial map's `p̃_4` with the affine part fitted to the samples, where the descent
-    /// starts; `None` if there was nothing to fit (fewer than three samples off one line): then the
-    /// map is the initial one.
+    /// starts; `None` if there was nothing to fit (fewer than three samples off one line, or a
+    /// window so thin that the focus body has no volume in it): then the map is the initial one.
     pub initial_h: Option<f64>,
     /// h of the planned map; `None` as `initial_h`.
     pub h: Option<f64>,
@@ -918,29 +918,25 @@ impl Problem {
     /// Step 4 and the depth row: samples → P.
     ///
     /// # Errors
-    /// As [`descend`] (except that too few samples keep the initial map); [`ShadowError::EmptyFocusBody`]
-    /// if B misses the planned window; [`ShadowError::FlatFocusBody`] if B ∩ W has no depth;
-    /// [`ShadowError::LightInsideFocusBody`] if it reaches the light's plane.
+    /// As [`descend`] (except that too few samples, or a window whose B ∩ W has no volume, keep the
+    /// initial map); [`ShadowError::LightInsideFocusBody`] if B ∩ W reaches the light's plane.
     pub fn solve(&self, options: &OptimalOptions) -> Result<Optimized, ShadowError> {
         options.validate()?;
         let Some(hull) = chart_hull(self.light, &self.cover)? else {
-            return Ok(Optimized {
-                setup: LightSetup {
-                    technique: Technique::Optimal,
-                    ..self.initial.clone()
-                },
-                report: OptimalReport {
-                    samples: self.counts,
-                    uniform_limited_h: None,
-                    initial_h: None,
-                    h: None,
-                    steps_degrees: Vec::new(),
-                },
-            });
+            return Ok(self.keep_initial());
         };
         let window = Window::new(self.light, hull, options.border);
         let descent = descend_from(&self.objective, &window, self.initial_rows.p4, options)?;
-        let (projection, body) = self.with_depth(&descent.rows)?;
+        let (projection, body) = match self.with_depth(&descent.rows) {
+            Ok(fit) => fit,
+            // A few samples nearly on one line fit a window so thin that B ∩ W has no volume
+            // within the hull crate's tolerances (seen on `outdoor` with 4 samples): there is no
+            // depth range to fit, and the initial map is kept.
+            Err(ShadowError::EmptyFocusBody | ShadowError::FlatFocusBody { .. }) => {
+                return Ok(self.keep_initial());
+            }
+            Err(e) => return Err(e),
+        };
         Ok(Optimized {
             setup: LightSetup {
                 technique: Technique::Optimal,
@@ -962,6 +958,23 @@ impl Problem {
                 steps_degrees: descent.steps_degrees,
             },
         })
+    }
+
+    /// The initial map, kept when there is nothing to optimize.
+    fn keep_initial(&self) -> Optimized {
+        Optimized {
+            setup: LightSetup {
+                technique: Technique::Optimal,
+                ..self.initial.clone()
+            },
+            report: OptimalReport {
+                samples: self.counts,
+                uniform_limited_h: None,
+                initial_h: None,
+                h: None,
+                steps_degrees: Vec::new(),
+            },
+        }
     }
 
     /// P with its depth row fitted to B ∩ W, and B ∩ W's vertices (world).

@@ -19,6 +19,7 @@ use crate::map::{MapOptions, ShadowMap};
 use crate::optimal::{self, OptimalOptions};
 use crate::plan::{Partition, Splits, plan_partitions};
 use crate::setup::ShadowMapping;
+use crate::snap::snap_to_texels;
 use crate::technique::Technique;
 
 /// How a frame's shadows are made and read.
@@ -36,6 +37,9 @@ pub struct FrameOptions {
     pub splits: Splits,
     /// Bias and filter.
     pub lookup: Lookup,
+    /// Texel snapping against shimmer ([`crate::snap_to_texels`]): each map's window moved so the
+    /// world origin falls on the corner of this many texels' grid; 0 leaves the windows alone.
+    pub snap_texels: u32,
 }
 
 /// One light's shadow: its partitions and their maps.
@@ -58,6 +62,17 @@ pub struct Timings {
     pub shadow_pass: Duration,
     /// Looking every visible point up.
     pub lookup: Duration,
+}
+
+/// A frame's shadows, made for an eye pass that already exists ([`render_shadows`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Shadows {
+    /// Per light, its maps.
+    pub lights: Vec<LightShadow>,
+    /// Per light, how lit each pixel's visible point is (1 where nothing is visible).
+    pub lit: Vec<Vec<f64>>,
+    /// Time per phase (`eye_pass` is zero: the pass was made before).
+    pub timings: Timings,
 }
 
 /// A rendered frame.
@@ -155,25 +170,52 @@ pub fn plan_light(
     plan_partitions(&input, technique, splits, partitions.max(1))
 }
 
-/// Renders `scene` with shadows made as `options` says.
+/// Renders `scene` with shadows made as `options` says: the eye pass, then [`render_shadows`].
 ///
 /// # Errors
 /// As [`crate::plan`] (the technique undefined for a light, an empty focus body, …) and the
 /// rasterizer's.
 pub fn render_frame(scene: &Scene, options: &FrameOptions) -> Result<Frame, ShadowError> {
-    let mesh = Triangles::new(scene.mesh.positions(), scene.mesh.triangles());
     let start = Instant::now();
-    let (eye_image, nearest_visible) = eye_pass(scene)?;
-    let depths = eye_depths(&eye_image, &scene_eye(scene));
-    let mut timings = Timings {
-        eye_pass: start.elapsed(),
-        ..Timings::default()
-    };
-    let bvh = match options.technique {
-        Technique::Logarithmic => Some(
-            Bvh::new(scene.mesh.positions(), scene.mesh.triangles())
-                .map_err(|e| ShadowError::Trace(e.to_string()))?,
-        ),
+    let (eye, nearest_visible) = eye_pass(scene)?;
+    let eye_time = start.elapsed();
+    let shadows = render_shadows(scene, options, &eye, nearest_visible, None)?;
+    Ok(Frame {
+        eye,
+        lights: shadows.lights,
+        lit: shadows.lit,
+        timings: Timings {
+            eye_pass: eye_time,
+            ..shadows.timings
+        },
+    })
+}
+
+/// The shadows of `scene` as `options` says, for its eye pass `eye` (from [`eye_pass`], with
+/// `nearest_visible` its nearest visible depth): plan, render the maps, look every visible point
+/// up. A study that tries many options on one view makes the eye pass once. `bvh`, the scene's
+/// ray-casting hierarchy, is what the logarithmic map is cast against; without it one is built.
+///
+/// # Errors
+/// As [`render_frame`], and [`ShadowError::Trace`] if the hierarchy cannot be built.
+pub fn render_shadows(
+    scene: &Scene,
+    options: &FrameOptions,
+    eye: &EyeImage,
+    nearest_visible: Option<f64>,
+    bvh: Option<&Bvh>,
+) -> Result<Shadows, ShadowError> {
+    let mesh = Triangles::new(scene.mesh.positions(), scene.mesh.triangles());
+    let depths = eye_depths(eye, &scene_eye(scene));
+    let mut timings = Timings::default();
+    let built;
+    let bvh = match (options.technique, bvh) {
+        (_, Some(bvh)) => Some(bvh),
+        (Technique::Logarithmic, None) => {
+            built = Bvh::new(scene.mesh.positions(), scene.mesh.triangles())
+                .map_err(|e| ShadowError::Trace(e.to_string()))?;
+            Some(&built)
+        }
         _ => None,
     };
     let map_options = MapOptions {
@@ -184,7 +226,7 @@ pub fn render_frame(scene: &Scene, options: &FrameOptions) -> Result<Frame, Shad
     let mut lights = Vec::with_capacity(scene.lights.len());
     for scene_light in &scene.lights {
         let start = Instant::now();
-        let partitions = plan_light(
+        let mut partitions = plan_light(
             scene,
             scene_light,
             options.technique,
@@ -192,12 +234,18 @@ pub fn render_frame(scene: &Scene, options: &FrameOptions) -> Result<Frame, Shad
             options.partitions,
             nearest_visible,
         )?;
+        if options.snap_texels > 0 {
+            for partition in &mut partitions {
+                partition.setup =
+                    snap_to_texels(&partition.setup, options.resolution, options.snap_texels);
+            }
+        }
         timings.planning += start.elapsed();
         let start = Instant::now();
         let maps = partitions
             .into_iter()
             .map(|partition| {
-                let map = match (&partition.setup.mapping, &bvh) {
+                let map = match (&partition.setup.mapping, bvh) {
                     (ShadowMapping::Logarithmic(_), Some(bvh)) => {
                         ShadowMap::cast(&partition.setup, bvh, map_options)
                     }
@@ -216,11 +264,10 @@ pub fn render_frame(scene: &Scene, options: &FrameOptions) -> Result<Frame, Shad
     let start = Instant::now();
     let lit = lights
         .iter()
-        .map(|shadow| look_up(&eye_image, &depths, shadow, &options.lookup))
+        .map(|shadow| look_up(eye, &depths, shadow, &options.lookup))
         .collect();
     timings.lookup = start.elapsed();
-    Ok(Frame {
-        eye: eye_image,
+    Ok(Shadows {
         lights,
         lit,
         timings,

@@ -31,13 +31,14 @@ fn fnv1a(bytes: impl IntoIterator<Item = u8>) -> u64 {
     })
 }
 
-fn techniques() -> [Technique; 5] {
+fn techniques() -> [Technique; 6] {
     [
         Technique::Uniform,
         Technique::UniformLimited,
         Technique::Psm,
         Technique::Lispsm(shadowlab_shadow::WarpChoice::PAPER),
         Technique::Logarithmic,
+        Technique::Optimal,
     ]
 }
 
@@ -55,6 +56,7 @@ fn frames() -> String {
                 partitions: 1,
                 splits: Splits::Uniform,
                 lookup: Lookup::new(Bias::DEFAULT, Filter::Pcf { size: 3 }),
+                snap_texels: 0,
             };
             let line = match render_frame(&scene, &options) {
                 Ok(frame) => {

@@ -6,6 +6,8 @@
 //! - `lookups`: rendered maps looked up: shadows where geometry puts them, biases against acne,
 //!   filters only at edges, seeded disks;
 //! - `limits`: γ → 0, γ = φ, γ = 90°, far/near up to 1e9: finite, continuous, tending to uniform;
+//! - `optimal`: the scene-optimized map's objective, gradient, descent and plans (CG06);
+//! - `snap`: texel snapping translates the window onto the grid and nothing else;
 //! - `support`: seeded configurations.
 
 mod closed_forms;
@@ -13,4 +15,5 @@ mod golden;
 mod limits;
 mod lookups;
 mod optimal;
+mod snap;
 mod support;

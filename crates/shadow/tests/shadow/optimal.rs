@@ -390,6 +390,7 @@ fn optimized_frames_render_and_look_up() {
             partitions,
             splits: Splits::Logarithmic,
             lookup: Lookup::new(Bias::DEFAULT, Filter::Pcf { size: 3 }),
+            snap_texels: 0,
         };
         let frame = render_frame(&scene, &options).unwrap();
         let maps = &frame.lights[0].maps;
