@@ -33,6 +33,106 @@ pub(crate) enum Command {
     /// Render a scene with several techniques and put the same crop of each eye view side by side
     /// in one labelled picture.
     Compare(CompareArgs),
+    /// Measure what each technique costs and buys on a scene: misclassified pixels against the
+    /// exact truth, the texel footprint on screen, time; written as a report with tables, CSV,
+    /// JSON, a Pareto plot, heatmaps and difference images.
+    Analyze(AnalyzeArgs),
+    /// Sweep the light from parallel to perpendicular to the view and plot each technique's
+    /// misclassified pixels and largest texel footprint, to show continuity at γ = 0.
+    SweepAngle(SweepArgs),
+    /// Walk the camera and count the pixels whose shadow flips while the truth does not
+    /// (shimmer), per technique, with and without texel snapping.
+    Temporal(TemporalArgs),
+}
+
+/// The techniques every study command measures by default.
+const ALL_TECHNIQUES: &str =
+    "uniform,uniform_limited,psm,lispsm,lispsm:minimax,logarithmic,optimal";
+
+/// Arguments of `shadowlab analyze`.
+#[derive(Debug, Args)]
+pub(crate) struct AnalyzeArgs {
+    /// A built-in scene or a scene file. Default: outdoor.
+    pub(crate) scene: Option<String>,
+    /// The techniques, comma-separated, each TECHNIQUE or lispsm:PARAMETER.
+    #[arg(long, value_delimiter = ',', default_value = ALL_TECHNIQUES)]
+    pub(crate) techniques: Vec<String>,
+    /// Shadow-map sides, comma-separated (Chong and Gortler's: 750 to 2000).
+    #[arg(long, value_delimiter = ',', default_value = "750,1000,1250,1500,1750,2000", value_parser = clap::value_parser!(u32).range(1..=16384))]
+    pub(crate) resolutions: Vec<u32>,
+    /// Partition counts, comma-separated.
+    #[arg(long, value_delimiter = ',', default_value = "1", value_parser = clap::value_parser!(u32).range(1..=16))]
+    pub(crate) splits: Vec<u32>,
+    /// How partitions split the depth range: uniform, logarithmic, practical or practical:WEIGHT,
+    /// adaptive or adaptive:DELTA.
+    #[arg(long, default_value = "practical:0.5")]
+    pub(crate) split_scheme: String,
+    /// Filters, comma-separated: nearest, pcf:K, disk:TAPS;RADIUS (use ; between a filter's
+    /// numbers here), vsm:K.
+    #[arg(long, value_delimiter = ',', default_value = "nearest")]
+    pub(crate) filters: Vec<String>,
+    /// Depth bias of every lookup.
+    #[arg(long, default_value = "slope:2,1e-5")]
+    pub(crate) bias: String,
+    /// Also compare the exact truth with a 4096² uniform map's, as Chong and Gortler's truth was.
+    #[arg(long)]
+    pub(crate) map_truth: bool,
+    /// Directory to write into. Default: out/analyze/SCENE.
+    #[arg(long)]
+    pub(crate) out: Option<PathBuf>,
+}
+
+/// Arguments of `shadowlab sweep-angle`.
+#[derive(Debug, Args)]
+pub(crate) struct SweepArgs {
+    /// A built-in scene or a scene file (its first light is replaced). Default: outdoor.
+    pub(crate) scene: Option<String>,
+    /// The techniques (near-parallel policies), comma-separated.
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "uniform,psm,lispsm,lispsm:minimax,lispsm:filament,lispsm:ogre,lispsm:osg,lispsm:osg_vdsm,optimal"
+    )]
+    pub(crate) techniques: Vec<String>,
+    /// Shadow-map side.
+    #[arg(long, default_value_t = 1024, value_parser = clap::value_parser!(u32).range(1..=16384))]
+    pub(crate) resolution: u32,
+    /// Eye image size, WIDTHxHEIGHT (default: the scene's).
+    #[arg(long, value_parser = parse_size)]
+    pub(crate) eye_size: Option<(u32, u32)>,
+    /// Let the light come from behind the viewer as γ → 0 (default: from in front, the dueling
+    /// frusta).
+    #[arg(long)]
+    pub(crate) behind: bool,
+    /// Directory to write into. Default: out/sweep/SCENE.
+    #[arg(long)]
+    pub(crate) out: Option<PathBuf>,
+}
+
+/// Arguments of `shadowlab temporal`.
+#[derive(Debug, Args)]
+pub(crate) struct TemporalArgs {
+    /// A built-in scene or a scene file. Default: outdoor.
+    pub(crate) scene: Option<String>,
+    /// Number of frames of the walk.
+    #[arg(long, default_value_t = 24, value_parser = clap::value_parser!(u32).range(2..=10000))]
+    pub(crate) frames: u32,
+    /// The techniques, comma-separated.
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "uniform,uniform_limited,psm,lispsm,optimal"
+    )]
+    pub(crate) techniques: Vec<String>,
+    /// Shadow-map side.
+    #[arg(long, default_value_t = 1024, value_parser = clap::value_parser!(u32).range(1..=16384))]
+    pub(crate) resolution: u32,
+    /// Eye image size, WIDTHxHEIGHT (default: the scene's).
+    #[arg(long, value_parser = parse_size)]
+    pub(crate) eye_size: Option<(u32, u32)>,
+    /// Directory to write into. Default: out/temporal/SCENE.
+    #[arg(long)]
+    pub(crate) out: Option<PathBuf>,
 }
 
 /// Arguments of `shadowlab compare`.

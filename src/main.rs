@@ -5,6 +5,7 @@
 //! the flag or file). Outputs are written to a temporary file beside their destination and renamed
 //! into place, so a failed run leaves nothing half-written.
 
+mod analyze_command;
 mod args;
 mod compare_command;
 mod curves_command;
@@ -35,6 +36,9 @@ fn main() -> ExitCode {
         Command::Render(args) => render_command::run(&args),
         Command::Inspect(args) => inspect_command::run(&args),
         Command::Compare(args) => compare_command::run(&args),
+        Command::Analyze(args) => analyze_command::analyze(&args),
+        Command::SweepAngle(args) => analyze_command::sweep_angle(&args),
+        Command::Temporal(args) => analyze_command::temporal(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -3,9 +3,12 @@
 //! * `params_cli` — `shadowlab params`: values against formulas.md §8, JSON shape, bad input.
 //! * `curves_cli` — `shadowlab curves`: every file written, byte-identical across runs, bad input.
 //! * `render_mesh_cli` — `shadowlab render-mesh`: both passes as PNG and EXR, repeatable, bad meshes.
+//! * `analyze_cli` — `shadowlab analyze`, `sweep-angle`, `temporal`: the reports, repeatable results,
+//!   continuity at γ = 0, bad input.
 //! * `render_cli` — `shadowlab render` and `inspect`: the pictures, repeatable, partitions, JSON,
 //!   bad scenes and settings.
 
+mod analyze_cli;
 mod curves_cli;
 mod params_cli;
 mod render_cli;

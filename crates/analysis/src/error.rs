@@ -52,6 +52,8 @@ pub enum AnalysisError {
         /// Triangles in the scene's mesh.
         mesh: usize,
     },
+    /// A figure could not be drawn (the plotting crate's message).
+    Plot(String),
     /// A heat-map scale that is not `0 < low < high < ∞`.
     HeatScale {
         /// The lower end given.
@@ -98,6 +100,7 @@ impl fmt::Display for AnalysisError {
                 "the ray-casting hierarchy holds {bvh} triangles but the scene's mesh {mesh}: it \
                  was built over another mesh"
             ),
+            Self::Plot(message) => write!(f, "drawing a figure: {message}"),
             Self::HeatScale { low, high } => write!(
                 f,
                 "a heat-map scale needs 0 < low < high < ∞, got low = {low}, high = {high}"
@@ -123,5 +126,11 @@ impl From<TraceError> for AnalysisError {
 impl From<RasterError> for AnalysisError {
     fn from(e: RasterError) -> Self {
         Self::Raster(e)
+    }
+}
+
+impl From<shadowlab_plot::PlotError> for AnalysisError {
+    fn from(e: shadowlab_plot::PlotError) -> Self {
+        Self::Plot(e.to_string())
     }
 }

@@ -9,6 +9,10 @@
 //! | [`classify`] | falsely lit and falsely shadowed pixels of a frame against a truth, and their picture | — |
 //! | [`aliasing`] | the texel's footprint on screen per pixel from the Jacobian of screen → shadow map on the visible surface, split into perspective and projection parts | CG06 eqs. 4–6, LiSPSM eq. 1; formulas.md §1, §6 |
 //! | [`images`] | heat maps of per-pixel values on a logarithmic viridis scale | — |
+//! | [`study`] | one scene, every combination of technique, resolution, partitions and filter, measured against one exact truth in one run | CG06 §5 (their table) |
+//! | [`report`] | a study as `report.md`, `results.csv`, `results.json` and a Pareto plot of time against misclassified pixels | — |
+//! | [`sweep`] | the light swept from parallel to perpendicular to the view: errors and aliasing per angle | formulas.md §9 (near-parallel policies) |
+//! | [`temporal`] | a moving camera: pixels whose shadow flips while the truth does not ("shimmer"), with and without texel snapping | production-variants.md (snapping) |
 //!
 //! ```no_run
 //! use shadowlab_analysis::{aliasing, classify, truth};
@@ -39,6 +43,10 @@ pub mod aliasing;
 pub mod classify;
 mod error;
 pub mod images;
+pub mod report;
+pub mod study;
+pub mod sweep;
+pub mod temporal;
 pub mod truth;
 
 pub use error::AnalysisError;

@@ -6,10 +6,12 @@
 //! - `aliasing`: the footprint against closed forms (a tilted plane, an independent construction
 //!   per pixel, `measure`'s view-axis error at 90° and at any γ), statistics, thread counts;
 //! - `images`: the heat map's colours and scale;
+//! - `temporal`: the camera walk, and a frame where the optimizer keeps the initial map;
 //! - `support`: scenes, hand-built eye images, the seeded configuration.
 
 mod aliasing;
 mod classify;
 mod images;
 mod support;
+mod temporal;
 mod truth;

@@ -1,0 +1,517 @@
+//! A study written out: `report.md` (tables in the manner of Chong and Gortler's), `results.csv`,
+//! `results.json` and the Pareto plot of time against misclassified pixels.
+//!
+//! Every number but the times is deterministic; the times are wall-clock measurements of the same
+//! run and vary from run to run.
+
+use std::fmt::Write as _;
+
+use serde_json::{Value, json};
+use shadowlab_plot::{Axis, Figure, LegendPosition, LineStyle, Panel, Series};
+use shadowlab_shadow::{Filter, Technique, WarpChoice};
+
+use crate::aliasing::AliasingStats;
+use crate::error::AnalysisError;
+use crate::study::{Measurement, Outcome, Study};
+
+/// The files of a report.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Report {
+    /// `report.md`.
+    pub markdown: String,
+    /// `results.csv`.
+    pub csv: String,
+    /// `results.json`.
+    pub json: String,
+    /// `pareto.svg`.
+    pub pareto_svg: String,
+    /// `pareto.png`.
+    pub pareto_png: Vec<u8>,
+}
+
+/// The technique's name in tables: its key, and LiSPSM's parameter after a slash.
+#[must_use]
+pub fn technique_label(technique: Technique) -> String {
+    match technique {
+        Technique::Lispsm(choice) if choice == WarpChoice::PAPER => "lispsm".into(),
+        Technique::Lispsm(choice) => format!("lispsm/{}", choice.key()),
+        other => other.key().into(),
+    }
+}
+
+/// A filter as the command line writes it.
+#[must_use]
+pub fn filter_label(filter: &Filter) -> String {
+    match filter {
+        Filter::Nearest => "nearest".into(),
+        Filter::Pcf { size } => format!("pcf:{size}"),
+        Filter::Disk { taps, radius, seed } => format!("disk:{taps},{radius},{seed}"),
+        Filter::Vsm { size, min_variance } => format!("vsm:{size},{min_variance}"),
+    }
+}
+
+fn ms(d: std::time::Duration) -> f64 {
+    d.as_secs_f64() * 1e3
+}
+
+/// Writes the report of `study`.
+///
+/// # Errors
+/// [`AnalysisError::Plot`] if the Pareto plot cannot be drawn.
+pub fn report(study: &Study) -> Result<Report, AnalysisError> {
+    let figure = pareto(study);
+    let pareto_svg = shadowlab_plot::render_svg(&figure)?;
+    let pareto_png = shadowlab_plot::render_png(&pareto_svg)?;
+    Ok(Report {
+        markdown: markdown(study),
+        csv: csv(study)?,
+        json: serde_json::to_string_pretty(&json(study)).expect("plain data"),
+        pareto_svg,
+        pareto_png,
+    })
+}
+
+/// The groups of a study that share partitions and filter, in order of first appearance.
+fn groups(study: &Study) -> Vec<(usize, String)> {
+    let mut out: Vec<(usize, String)> = Vec::new();
+    for m in &study.measurements {
+        let key = (m.setting.partitions, filter_label(&m.setting.filter));
+        if !out.contains(&key) {
+            out.push(key);
+        }
+    }
+    out
+}
+
+fn distinct<T: PartialEq + Copy>(values: impl Iterator<Item = T>) -> Vec<T> {
+    let mut out = Vec::new();
+    for v in values {
+        if !out.contains(&v) {
+            out.push(v);
+        }
+    }
+    out
+}
+
+fn markdown(study: &Study) -> String {
+    let mut md = String::new();
+    let visible = study.visible.max(1);
+    #[expect(clippy::cast_precision_loss, reason = "pixel counts")]
+    let percent = |n: u64| 100.0 * n as f64 / visible as f64;
+    writeln!(md, "# Shadow quality and cost: `{}`\n", study.scene).unwrap();
+    writeln!(
+        md,
+        "{}×{} eye image, {} visible pixels. Misclassified pixels are counted against the exact truth \
+         (one ray per visible pixel toward each light), computed in {:.1} ms.",
+        study.width,
+        study.height,
+        study.visible,
+        ms(study.truth_time)
+    )
+    .unwrap();
+    if let Some(d) = &study.map_truth {
+        writeln!(
+            md,
+            "A {0}² uniform shadow map, Chong and Gortler's truth, disagrees with it at {1} pixels ({2:.3} %): \
+             {3} falsely lit, {4} falsely shadowed.",
+            crate::study::MAP_TRUTH_RESOLUTION,
+            d.total(),
+            percent(d.total()),
+            d.falsely_lit,
+            d.falsely_shadowed
+        )
+        .unwrap();
+    }
+    let techniques = distinct(study.measurements.iter().map(|m| m.setting.technique));
+    let resolutions = distinct(study.measurements.iter().map(|m| m.setting.resolution));
+    for (partitions, filter) in groups(study) {
+        let find = |t: Technique, r: u32| {
+            study.measurements.iter().find(|m| {
+                m.setting.technique == t
+                    && m.setting.resolution == r
+                    && m.setting.partitions == partitions
+                    && filter_label(&m.setting.filter) == filter
+            })
+        };
+        writeln!(
+            md,
+            "\n## Misclassified pixels — {partitions} map(s) per light, filter {filter}\n"
+        )
+        .unwrap();
+        let header: Vec<String> = techniques.iter().map(|t| technique_label(*t)).collect();
+        writeln!(md, "| resolution | {} |", header.join(" | ")).unwrap();
+        writeln!(md, "|---:|{}", "---:|".repeat(header.len())).unwrap();
+        let mut excess = Vec::new();
+        for r in &resolutions {
+            let counts: Vec<Option<u64>> = techniques
+                .iter()
+                .map(|t| {
+                    find(*t, *r)
+                        .and_then(|m| m.outcome.as_ref().ok())
+                        .map(|o| o.errors.total())
+                })
+                .collect();
+            let cells: Vec<String> = counts
+                .iter()
+                .map(|c| c.map_or("—".into(), |c| format!("{c} ({:.2} %)", percent(c))))
+                .collect();
+            writeln!(md, "| {r} | {} |", cells.join(" | ")).unwrap();
+            let best = counts.iter().flatten().min().copied();
+            excess.push((r, counts, best));
+        }
+        writeln!(
+            md,
+            "\nPercentage more misclassified pixels than the best technique at that resolution:\n"
+        )
+        .unwrap();
+        writeln!(md, "| resolution | {} |", header.join(" | ")).unwrap();
+        writeln!(md, "|---:|{}", "---:|".repeat(header.len())).unwrap();
+        for (r, counts, best) in excess {
+            let cells: Vec<String> = counts
+                .iter()
+                .map(|c| match (c, best) {
+                    (Some(c), Some(b)) if b > 0 => {
+                        #[expect(clippy::cast_precision_loss, reason = "pixel counts")]
+                        let more = 100.0 * (*c as f64 - b as f64) / b as f64;
+                        format!("{more:.1} %")
+                    }
+                    (Some(_), _) => "0 %".into(),
+                    (None, _) => "—".into(),
+                })
+                .collect();
+            writeln!(md, "| {r} | {} |", cells.join(" | ")).unwrap();
+        }
+        chong_gortler(&mut md, &resolutions, &find);
+        // Aliasing and time at every resolution, one table each.
+        writeln!(
+            md,
+            "\n### Texel footprint on screen (pixels per texel): max / 99th percentile / mean\n"
+        )
+        .unwrap();
+        writeln!(md, "| resolution | {} |", header.join(" | ")).unwrap();
+        writeln!(md, "|---:|{}", "---:|".repeat(header.len())).unwrap();
+        for r in &resolutions {
+            let cells: Vec<String> = techniques
+                .iter()
+                .map(|t| {
+                    find(*t, *r)
+                        .and_then(|m| m.outcome.as_ref().ok())
+                        .map_or("—".into(), |o| {
+                            let s = &o.footprint[0];
+                            format!("{:.2} / {:.2} / {:.2}", s.max, s.p99, s.mean)
+                        })
+                })
+                .collect();
+            writeln!(md, "| {r} | {} |", cells.join(" | ")).unwrap();
+        }
+        writeln!(
+            md,
+            "\n### Time per frame (planning + shadow pass + lookup, ms)\n"
+        )
+        .unwrap();
+        writeln!(md, "| resolution | {} |", header.join(" | ")).unwrap();
+        writeln!(md, "|---:|{}", "---:|".repeat(header.len())).unwrap();
+        for r in &resolutions {
+            let cells: Vec<String> = techniques
+                .iter()
+                .map(|t| {
+                    find(*t, *r)
+                        .and_then(|m| m.outcome.as_ref().ok())
+                        .map_or("—".into(), |o| format!("{:.1}", ms(o.time())))
+                })
+                .collect();
+            writeln!(md, "| {r} | {} |", cells.join(" | ")).unwrap();
+        }
+    }
+    let undefined: Vec<&Measurement> = study
+        .measurements
+        .iter()
+        .filter(|m| m.outcome.is_err())
+        .collect();
+    if !undefined.is_empty() {
+        writeln!(md, "\n## Not defined for this scene\n").unwrap();
+        let mut seen = Vec::new();
+        for m in undefined {
+            let label = technique_label(m.setting.technique);
+            if !seen.contains(&label) {
+                writeln!(
+                    md,
+                    "- {label}: {}",
+                    m.outcome.as_ref().err().map_or("", String::as_str)
+                )
+                .unwrap();
+                seen.push(label);
+            }
+        }
+    }
+    writeln!(md, "\n## The trade\n").unwrap();
+    writeln!(md, "![Time against misclassified pixels](pareto.png)\n").unwrap();
+    writeln!(
+        md,
+        "Combinations no other beats in both time and misclassified pixels (the Pareto front):\n"
+    )
+    .unwrap();
+    writeln!(
+        md,
+        "| technique | resolution | maps | filter | misclassified | time (ms) |"
+    )
+    .unwrap();
+    writeln!(md, "|---|---:|---:|---|---:|---:|").unwrap();
+    for m in pareto_front(study) {
+        let o = m.outcome.as_ref().expect("defined");
+        writeln!(
+            md,
+            "| {} | {} | {} | {} | {} | {:.1} |",
+            technique_label(m.setting.technique),
+            m.setting.resolution,
+            m.setting.partitions,
+            filter_label(&m.setting.filter),
+            o.errors.total(),
+            ms(o.time())
+        )
+        .unwrap();
+    }
+    md
+}
+
+/// CG06's Table 1 reported 33–41 % more misclassified pixels for "normal" shadow maps (uniform
+/// with frustum limiting) than for their optimized ones, at 750² to 2000².
+const CG06_NORMAL_EXCESS: (f64, f64) = (33.0, 41.0);
+
+/// The structure of CG06's Table 1 — normal (uniform with frustum limiting) against optimal per
+/// resolution, and how many more pixels normal misclassifies — with the paper's range beside it.
+/// Written only if the study has both techniques.
+fn chong_gortler<'a>(
+    md: &mut String,
+    resolutions: &[u32],
+    find: &impl Fn(Technique, u32) -> Option<&'a Measurement>,
+) {
+    let errors = |t: Technique, r: u32| {
+        find(t, r)
+            .and_then(|m| m.outcome.as_ref().ok())
+            .map(|o| o.errors.total())
+    };
+    let rows: Vec<(u32, u64, u64)> = resolutions
+        .iter()
+        .filter_map(|r| {
+            Some((
+                *r,
+                errors(Technique::UniformLimited, *r)?,
+                errors(Technique::Optimal, *r)?,
+            ))
+        })
+        .collect();
+    if rows.is_empty() {
+        return;
+    }
+    writeln!(
+        md,
+        "\nAgainst Chong and Gortler's Table 1 (normal = `uniform_limited`):\n"
+    )
+    .unwrap();
+    writeln!(
+        md,
+        "| resolution | normal | optimal | normal misclassifies more |"
+    )
+    .unwrap();
+    writeln!(md, "|---:|---:|---:|---:|").unwrap();
+    let mut excess = Vec::new();
+    for (r, normal, optimal) in rows {
+        #[expect(clippy::cast_precision_loss, reason = "pixel counts")]
+        let more = 100.0 * (normal as f64 - optimal as f64) / (optimal.max(1) as f64);
+        excess.push(more);
+        writeln!(md, "| {r} | {normal} | {optimal} | {more:.1} % |").unwrap();
+    }
+    let low = excess.iter().copied().fold(f64::INFINITY, f64::min);
+    let high = excess.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    let (paper_low, paper_high) = CG06_NORMAL_EXCESS;
+    let verdict = if high < paper_low {
+        "less than the paper found"
+    } else if low > paper_high {
+        "more than the paper found"
+    } else {
+        "overlapping the paper's range"
+    };
+    writeln!(
+        md,
+        "\nHere normal misclassifies {low:.1} % to {high:.1} % more than optimal; Chong and Gortler \
+         reported {paper_low:.0} % to {paper_high:.0} % on their scenes (their truth: a 3700² uniform \
+         map; ours: exact rays) — {verdict}."
+    )
+    .unwrap();
+}
+
+/// The measurements no other defined one beats in both time and misclassified pixels, by time.
+#[must_use]
+pub fn pareto_front(study: &Study) -> Vec<&Measurement> {
+    let defined: Vec<(&Measurement, &Outcome)> = study
+        .measurements
+        .iter()
+        .filter_map(|m| m.outcome.as_ref().ok().map(|o| (m, o)))
+        .collect();
+    let mut front: Vec<(&Measurement, &Outcome)> = defined
+        .iter()
+        .filter(|(_, o)| {
+            !defined.iter().any(|(_, p)| {
+                p.time() <= o.time()
+                    && p.errors.total() <= o.errors.total()
+                    && (p.time() < o.time() || p.errors.total() < o.errors.total())
+            })
+        })
+        .copied()
+        .collect();
+    front.sort_by_key(|(_, o)| o.time());
+    front.into_iter().map(|(m, _)| m).collect()
+}
+
+fn stats_columns(s: &AliasingStats) -> [f64; 3] {
+    [s.max, s.p99, s.mean]
+}
+
+fn csv(study: &Study) -> Result<String, AnalysisError> {
+    // Numbers in Rust's shortest round-trip form (`{:?}`), as the plot crate's tables write them.
+    let mut out = String::from(
+        "scene,technique,resolution,maps,filter,defined,visible,misclassified,falsely_lit,falsely_shadowed,\
+         footprint_max,footprint_p99,footprint_mean,perspective_max,perspective_p99,perspective_mean,\
+         projection_max,projection_p99,projection_mean,planning_ms,shadow_pass_ms,lookup_ms,time_ms\n",
+    );
+    for m in &study.measurements {
+        let s = &m.setting;
+        let prefix = format!(
+            "{},{},{},{},{}",
+            study.scene,
+            technique_label(s.technique),
+            s.resolution,
+            s.partitions,
+            filter_label(&s.filter)
+        );
+        match &m.outcome {
+            Ok(o) => {
+                let mut fields = vec![format!("{prefix},true,{}", study.visible)];
+                fields.push(format!(
+                    "{},{},{}",
+                    o.errors.total(),
+                    o.errors.falsely_lit,
+                    o.errors.falsely_shadowed
+                ));
+                for part in &o.footprint {
+                    fields.extend(stats_columns(part).iter().map(|v| format!("{v:?}")));
+                }
+                for d in [o.planning, o.shadow_pass, o.lookup, o.time()] {
+                    fields.push(format!("{:?}", ms(d)));
+                }
+                writeln!(out, "{}", fields.join(",")).unwrap();
+            }
+            Err(_) => writeln!(out, "{prefix},false,{}{}", study.visible, ",".repeat(16)).unwrap(),
+        }
+    }
+    Ok(out)
+}
+
+fn json(study: &Study) -> Value {
+    json!({
+        "scene": study.scene,
+        "width": study.width,
+        "height": study.height,
+        "visible": study.visible,
+        "truth_ms": ms(study.truth_time),
+        "map_truth_disagreement": study.map_truth.as_ref().map(|d| json!({
+            "falsely_lit": d.falsely_lit, "falsely_shadowed": d.falsely_shadowed, "total": d.total()
+        })),
+        "measurements": study.measurements.iter().map(|m| {
+            let s = &m.setting;
+            let base = json!({
+                "technique": technique_label(s.technique),
+                "resolution": s.resolution,
+                "maps": s.partitions,
+                "filter": filter_label(&s.filter),
+            });
+            match &m.outcome {
+                Ok(o) => {
+                    let stats = |a: &AliasingStats| json!({"max": a.max, "p99": a.p99, "mean": a.mean});
+                    json!({
+                        "setting": base,
+                        "misclassified": o.errors.total(),
+                        "falsely_lit": o.errors.falsely_lit,
+                        "falsely_shadowed": o.errors.falsely_shadowed,
+                        "footprint": {"total": stats(&o.footprint[0]), "perspective": stats(&o.footprint[1]), "projection": stats(&o.footprint[2])},
+                        "ms": {"planning": ms(o.planning), "shadow_pass": ms(o.shadow_pass), "lookup": ms(o.lookup), "total": ms(o.time())},
+                    })
+                }
+                Err(reason) => json!({"setting": base, "not_defined": reason}),
+            }
+        }).collect::<Vec<_>>(),
+    })
+}
+
+/// Time against misclassified pixels, one line per technique (and maps/filter) through its
+/// resolutions.
+fn pareto(study: &Study) -> Figure {
+    let mut series = Vec::new();
+    let mut lines: Vec<(String, Vec<(f64, f64)>)> = Vec::new();
+    for m in &study.measurements {
+        let Ok(o) = &m.outcome else { continue };
+        let label = format!(
+            "{}{}{}",
+            technique_label(m.setting.technique),
+            if m.setting.partitions > 1 {
+                format!(" ×{}", m.setting.partitions)
+            } else {
+                String::new()
+            },
+            if m.setting.filter == Filter::Nearest {
+                String::new()
+            } else {
+                format!(" {}", filter_label(&m.setting.filter))
+            }
+        );
+        #[expect(clippy::cast_precision_loss, reason = "pixel counts")]
+        let point = (ms(o.time()), (o.errors.total() as f64).max(0.5));
+        match lines.iter_mut().find(|(l, _)| *l == label) {
+            Some((_, points)) => points.push(point),
+            None => lines.push((label, vec![point])),
+        }
+    }
+    let (mut x_max, mut y_min, mut y_max) = (1e-3f64, f64::INFINITY, 1.0f64);
+    for (index, (label, mut points)) in lines.into_iter().enumerate() {
+        points.sort_by(|a, b| a.0.total_cmp(&b.0));
+        for p in &points {
+            x_max = x_max.max(p.0);
+            y_min = y_min.min(p.1);
+            y_max = y_max.max(p.1);
+        }
+        series.push(Series::new(
+            label,
+            points,
+            index,
+            if index < 7 {
+                LineStyle::Solid
+            } else {
+                LineStyle::Dashed
+            },
+        ));
+    }
+    let y_min = if y_min.is_finite() {
+        (y_min * 0.5).max(0.5)
+    } else {
+        0.5
+    };
+    Figure::single(
+        format!(
+            "{}: time per frame against misclassified pixels",
+            study.scene
+        ),
+        Panel {
+            title: String::new(),
+            x: Axis::linear(
+                "time per frame (ms): planning + shadow pass + lookup",
+                0.0,
+                x_max * 1.08,
+            ),
+            y: Axis::log("misclassified pixels", y_min, y_max * 2.0),
+            series,
+            markers: Vec::new(),
+            legend: LegendPosition::UpperRight,
+        },
+    )
+}

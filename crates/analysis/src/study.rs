@@ -1,0 +1,318 @@
+//! A study: one scene, every combination of techniques, resolutions, partitions and filters,
+//! each measured against the exact truth in the same run.
+
+use std::time::{Duration, Instant};
+
+use shadowlab_raster::{DepthFormat, EyeImage, NO_TRIANGLE};
+use shadowlab_scene::Scene;
+use shadowlab_shadow::{
+    Bias, Filter, FrameOptions, Lookup, ShadowError, Shadows, Splits, Technique, eye_pass,
+    render_shadows, scene_eye,
+};
+use shadowlab_trace::Bvh;
+
+use crate::aliasing::{AliasingStats, Footprint, footprints, stats};
+use crate::classify::{Misclassification, difference_image, misclassification};
+use crate::error::AnalysisError;
+use crate::images::{HeatScale, heatmap};
+use crate::truth::{Truth, disagreement, exact_truth, map_truth, scene_bvh};
+
+/// Side of the uniform shadow map used as the alternative truth (Chong and Gortler used 3700²).
+pub const MAP_TRUTH_RESOLUTION: u32 = 4096;
+
+/// What to measure.
+#[derive(Clone, Debug, PartialEq)]
+pub struct StudyOptions {
+    /// The techniques.
+    pub techniques: Vec<Technique>,
+    /// Shadow-map sides.
+    pub resolutions: Vec<u32>,
+    /// Partition counts (1: one map).
+    pub partitions: Vec<usize>,
+    /// How partitions split the depth range.
+    pub splits: Splits,
+    /// Filters.
+    pub filters: Vec<Filter>,
+    /// The bias of every lookup.
+    pub bias: Bias,
+    /// The maps' depth format.
+    pub format: DepthFormat,
+    /// Also compute the high-resolution uniform map's truth and its disagreement with the exact one.
+    pub map_truth: bool,
+    /// Keep pictures (footprint heat map, difference image) of each technique at this resolution,
+    /// with the first partition count and filter; `None`: no pictures.
+    pub pictures_at: Option<u32>,
+}
+
+/// The pictures of one combination: rows from the bottom, like the eye image.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Pictures {
+    /// What they show.
+    pub setting: Setting,
+    /// The texel footprint per pixel on [`HeatScale::PIXELS_PER_TEXEL`] (first light).
+    pub heatmap: Vec<[u8; 3]>,
+    /// Misclassified pixels ([`difference_image`]).
+    pub difference: Vec<[u8; 3]>,
+}
+
+/// One combination's settings.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Setting {
+    /// The technique.
+    pub technique: Technique,
+    /// Shadow-map side.
+    pub resolution: u32,
+    /// Partition count.
+    pub partitions: usize,
+    /// The filter.
+    pub filter: Filter,
+}
+
+/// One combination, measured.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Measurement {
+    /// What was measured.
+    pub setting: Setting,
+    /// Its result, or why the technique is not defined for the scene.
+    pub outcome: Result<Outcome, String>,
+}
+
+/// What a combination costs and buys.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Outcome {
+    /// Misclassified pixels against the exact truth.
+    pub errors: Misclassification,
+    /// The texel footprint on screen (pixels per texel) over the visible pixels of the first
+    /// light: total, perspective part, projection part.
+    pub footprint: [AliasingStats; 3],
+    /// Planning time (bodies, parameters, optimizer).
+    pub planning: Duration,
+    /// Shadow-map rendering time.
+    pub shadow_pass: Duration,
+    /// Lookup time.
+    pub lookup: Duration,
+}
+
+impl Outcome {
+    /// What the technique costs per frame: planning, shadow pass and lookup.
+    #[must_use]
+    pub fn time(&self) -> Duration {
+        self.planning + self.shadow_pass + self.lookup
+    }
+}
+
+/// A scene's study.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Study {
+    /// The scene's name.
+    pub scene: String,
+    /// Eye image size.
+    pub width: u32,
+    /// Eye image height.
+    pub height: u32,
+    /// Pixels with a visible surface.
+    pub visible: u64,
+    /// The exact truth's time (BVH build and rays).
+    pub truth_time: Duration,
+    /// How the high-resolution uniform map's truth disagrees with the exact one, if computed.
+    pub map_truth: Option<Misclassification>,
+    /// Every combination, in the order techniques × resolutions × partitions × filters.
+    pub measurements: Vec<Measurement>,
+    /// The exact truth.
+    pub truth: Truth,
+    /// Pictures, if asked for ([`StudyOptions::pictures_at`]), in technique order.
+    pub pictures: Vec<Pictures>,
+}
+
+/// Every combination of `options`, in order.
+#[must_use]
+pub fn settings(options: &StudyOptions) -> Vec<Setting> {
+    let mut out = Vec::new();
+    for technique in &options.techniques {
+        for resolution in &options.resolutions {
+            for partitions in &options.partitions {
+                for filter in &options.filters {
+                    out.push(Setting {
+                        technique: *technique,
+                        resolution: *resolution,
+                        partitions: *partitions,
+                        filter: *filter,
+                    });
+                }
+            }
+        }
+    }
+    out
+}
+
+/// The shadows of one combination for the scene's eye pass `eye` (exposed so callers can keep them
+/// for pictures); `bvh` is the scene's hierarchy, which the logarithmic map is cast against.
+///
+/// # Errors
+/// As `shadowlab_shadow::render_shadows`.
+pub fn render(
+    scene: &Scene,
+    options: &StudyOptions,
+    setting: &Setting,
+    eye: &EyePass,
+    bvh: &Bvh,
+) -> Result<Shadows, ShadowError> {
+    render_shadows(
+        scene,
+        &FrameOptions {
+            technique: setting.technique,
+            resolution: setting.resolution,
+            format: options.format,
+            partitions: setting.partitions,
+            splits: options.splits,
+            lookup: Lookup::new(options.bias, setting.filter),
+            snap_texels: 0,
+        },
+        &eye.image,
+        eye.nearest_visible,
+        Some(bvh),
+    )
+}
+
+/// The scene's eye pass, made once per study.
+#[derive(Clone, Debug, PartialEq)]
+pub struct EyePass {
+    /// Depth, triangle, position and normal per pixel.
+    pub image: EyeImage,
+    /// The nearest visible eye depth (PSM's near plane).
+    pub nearest_visible: Option<f64>,
+}
+
+impl EyePass {
+    /// The eye pass of `scene`'s camera.
+    ///
+    /// # Errors
+    /// The rasterizer's.
+    pub fn new(scene: &Scene) -> Result<Self, ShadowError> {
+        let (image, nearest_visible) = eye_pass(scene)?;
+        Ok(Self {
+            image,
+            nearest_visible,
+        })
+    }
+}
+
+/// The texel footprint of every pixel, through the map (partition) that serves it; first light.
+#[must_use]
+pub fn frame_footprints(
+    scene: &Scene,
+    eye: &EyeImage,
+    shadows: &Shadows,
+) -> Vec<Option<Footprint>> {
+    let mut per_pixel: Vec<Option<Footprint>> = vec![None; eye.triangle.len()];
+    if let Some(shadow) = shadows.lights.first() {
+        let view = scene_eye(scene);
+        let (e, v) = (view.pose.eye(), view.pose.forward());
+        let last = shadow.maps.len() - 1;
+        for (index, (partition, map)) in shadow.maps.iter().enumerate() {
+            let all = footprints(&map.setup, map.resolution, eye, &scene.camera);
+            for (pixel, value) in all.into_iter().enumerate() {
+                let depth = (eye.position[pixel] - e).dot(v);
+                // As the lookup: a partition serves depths from its near to the next one's.
+                let below_next = index == last || depth < shadow.maps[index + 1].0.near;
+                if (index == 0 || depth >= partition.near) && below_next {
+                    per_pixel[pixel] = value;
+                }
+            }
+        }
+    }
+    per_pixel
+}
+
+/// Measures a combination's shadows against the truth.
+#[must_use]
+pub fn measure(scene: &Scene, truth: &Truth, eye: &EyeImage, shadows: &Shadows) -> Outcome {
+    outcome(truth, shadows, &frame_footprints(scene, eye, shadows))
+}
+
+/// The outcome of shadows whose per-pixel footprints are `per_pixel`.
+fn outcome(truth: &Truth, shadows: &Shadows, per_pixel: &[Option<Footprint>]) -> Outcome {
+    let part = |f: fn(&Footprint) -> f64| stats(per_pixel.iter().flatten().map(f));
+    Outcome {
+        errors: misclassification(truth, &shadows.lit),
+        footprint: [
+            part(|f| f.total),
+            part(|f| f.perspective),
+            part(|f| f.projection),
+        ],
+        planning: shadows.timings.planning,
+        shadow_pass: shadows.timings.shadow_pass,
+        lookup: shadows.timings.lookup,
+    }
+}
+
+/// Runs the study, calling `progress(done, total)` after each combination.
+///
+/// # Errors
+/// The truth's errors (bad scene geometry); combinations whose technique is not defined for the
+/// scene are recorded as such, other failures abort.
+pub fn run(
+    scene: &Scene,
+    options: &StudyOptions,
+    mut progress: impl FnMut(usize, usize),
+) -> Result<Study, AnalysisError> {
+    let start = Instant::now();
+    let eye = EyePass::new(scene)?;
+    let bvh = scene_bvh(scene)?;
+    let truth = exact_truth(scene, &eye.image, &bvh)?;
+    let truth_time = start.elapsed();
+    let map_truth = if options.map_truth {
+        let approximate = map_truth(scene, &eye.image, MAP_TRUTH_RESOLUTION)?;
+        Some(disagreement(&truth, &approximate))
+    } else {
+        None
+    };
+    let all = settings(options);
+    let mut measurements = Vec::with_capacity(all.len());
+    let mut pictures = Vec::new();
+    for (k, setting) in all.iter().enumerate() {
+        let outcome = match render(scene, options, setting, &eye, &bvh) {
+            Ok(shadows) => {
+                let per_pixel = frame_footprints(scene, &eye.image, &shadows);
+                let pictured = options.pictures_at == Some(setting.resolution)
+                    && options.partitions.first() == Some(&setting.partitions)
+                    && options.filters.first() == Some(&setting.filter);
+                if pictured {
+                    let totals: Vec<Option<f64>> =
+                        per_pixel.iter().map(|f| f.map(|f| f.total)).collect();
+                    let (width, height) = (eye.image.width, eye.image.height);
+                    pictures.push(Pictures {
+                        setting: setting.clone(),
+                        heatmap: heatmap(&totals, width, height, HeatScale::PIXELS_PER_TEXEL),
+                        difference: difference_image(&truth, &shadows.lit, &eye.image),
+                    });
+                }
+                Ok(outcome(&truth, &shadows, &per_pixel))
+            }
+            Err(ShadowError::NotDefined { reason, .. }) => Err(reason),
+            Err(e) => return Err(e.into()),
+        };
+        measurements.push(Measurement {
+            setting: setting.clone(),
+            outcome,
+        });
+        progress(k + 1, all.len());
+    }
+    let visible = eye
+        .image
+        .triangle
+        .iter()
+        .filter(|t| **t != NO_TRIANGLE)
+        .count();
+    Ok(Study {
+        scene: scene.name.clone(),
+        width: scene.camera.width,
+        height: scene.camera.height,
+        visible: visible as u64,
+        truth_time,
+        map_truth,
+        measurements,
+        truth,
+        pictures,
+    })
+}

@@ -1,0 +1,195 @@
+//! Temporal stability: the camera walks; a pixel *shimmers* when its shadow state flips from one
+//! frame to the next while the truth there does not. Measured with and without texel snapping.
+
+use glam::{DQuat, DVec3};
+use shadowlab_hull::ViewPose;
+use shadowlab_raster::NO_TRIANGLE;
+use shadowlab_scene::Scene;
+use shadowlab_shadow::{
+    Bias, Filter, FrameOptions, Lookup, ShadowError, Splits, Technique, eye_pass, render_shadows,
+};
+use shadowlab_trace::Bvh;
+
+use crate::error::AnalysisError;
+use crate::truth::exact_truth;
+
+/// How far the camera walks per frame, as a fraction of the scene's bounding radius.
+pub const STEP_FRACTION: f64 = 0.002;
+/// How far it turns per frame (yaw about +y), radians.
+pub const TURN_PER_FRAME: f64 = 0.1 * std::f64::consts::PI / 180.0;
+/// A pixel counts as lit when its lit fraction is at least this.
+const LIT: f64 = 0.5;
+
+/// The camera pose of frame `k`: the scene's camera walked `k` steps along its horizontal view
+/// direction and turned `k` times by [`TURN_PER_FRAME`].
+///
+/// # Errors
+/// If the turned pose is degenerate (a camera looking straight up or down cannot walk
+/// horizontally: it walks along its own view direction then).
+pub fn pose_at(scene: &Scene, k: usize) -> Result<ViewPose, AnalysisError> {
+    let pose = scene.camera.pose;
+    let bounds = scene.bounds();
+    let radius = 0.5 * (bounds.max - bounds.min).length();
+    let v = pose.forward();
+    let horizontal = DVec3::new(v.x, 0.0, v.z);
+    let walk = if horizontal.length() > 1e-6 {
+        horizontal.normalize()
+    } else {
+        v
+    };
+    #[expect(clippy::cast_precision_loss, reason = "a frame index")]
+    let k = k as f64;
+    let turn = DQuat::from_rotation_y(TURN_PER_FRAME * k);
+    let eye = pose.eye() + walk * (STEP_FRACTION * radius * k);
+    Ok(ViewPose::look_to(eye, turn * v, turn * pose.up())
+        .map_err(shadowlab_shadow::ShadowError::from)?)
+}
+
+/// One technique's stability over the walk.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Stability {
+    /// The technique.
+    pub technique: Technique,
+    /// Texel snapping (0: off; otherwise the grid in texels).
+    pub snap_texels: u32,
+    /// Shimmering pixels between each pair of consecutive frames (or why the technique is not
+    /// defined for some frame).
+    pub shimmer: Result<Vec<u64>, String>,
+}
+
+/// Walks the camera over `frames` frames and counts each technique's shimmering pixels, with
+/// snapping off and on (1 texel).
+///
+/// # Errors
+/// Truth and rendering errors other than a technique not being defined.
+pub fn temporal(
+    scene: &Scene,
+    techniques: &[Technique],
+    frames: usize,
+    resolution: u32,
+    mut progress: impl FnMut(usize, usize),
+) -> Result<Vec<Stability>, AnalysisError> {
+    let bvh = Bvh::new(scene.mesh.positions(), scene.mesh.triangles())?;
+    let variants: Vec<(Technique, u32)> =
+        techniques.iter().flat_map(|t| [(*t, 0), (*t, 1)]).collect();
+    let mut states: Vec<Result<Vec<Vec<Option<bool>>>, String>> =
+        vec![Ok(Vec::new()); variants.len()];
+    let mut truths = Vec::with_capacity(frames);
+    for k in 0..frames {
+        let mut moved = scene.clone();
+        moved.camera.pose = pose_at(scene, k)?;
+        let (eye, nearest_visible) = eye_pass(&moved)?;
+        truths.push(exact_truth(&moved, &eye, &bvh)?.lit[0].clone());
+        for (state, (technique, snap)) in states.iter_mut().zip(&variants) {
+            let Ok(history) = state else { continue };
+            let options = FrameOptions {
+                technique: *technique,
+                resolution,
+                format: shadowlab_raster::DepthFormat::F32,
+                partitions: 1,
+                splits: Splits::Uniform,
+                lookup: Lookup::new(Bias::DEFAULT, Filter::Nearest),
+                snap_texels: *snap,
+            };
+            match render_shadows(&moved, &options, &eye, nearest_visible, Some(&bvh)) {
+                Ok(shadows) => history.push(
+                    eye.triangle
+                        .iter()
+                        .zip(&shadows.lit[0])
+                        .map(|(t, l)| (*t != NO_TRIANGLE).then_some(*l >= LIT))
+                        .collect(),
+                ),
+                Err(ShadowError::NotDefined { reason, .. }) => *state = Err(reason),
+                Err(e) => return Err(e.into()),
+            }
+        }
+        progress(k + 1, frames);
+    }
+    Ok(states
+        .into_iter()
+        .zip(variants)
+        .map(|(state, (technique, snap_texels))| Stability {
+            technique,
+            snap_texels,
+            shimmer: state.map(|history| {
+                (1..history.len())
+                    .map(|k| shimmer(&history[k - 1], &history[k], &truths[k - 1], &truths[k]))
+                    .collect()
+            }),
+        })
+        .collect())
+}
+
+/// Pixels seen in both frames whose truth is the same in both but whose shadow state flips.
+fn shimmer(
+    before: &[Option<bool>],
+    after: &[Option<bool>],
+    truth_before: &[Option<bool>],
+    truth_after: &[Option<bool>],
+) -> u64 {
+    let mut count = 0;
+    for k in 0..before.len() {
+        if let (Some(a), Some(b), Some(ta), Some(tb)) =
+            (before[k], after[k], truth_before[k], truth_after[k])
+            && ta == tb
+            && a != b
+        {
+            count += 1;
+        }
+    }
+    count
+}
+
+/// The walk written out: `temporal.csv` (shimmering pixels per frame pair) and `temporal.md` (mean
+/// and largest per technique, snapping off and on).
+#[must_use]
+pub fn write(scene: &str, stability: &[Stability]) -> Vec<(String, Vec<u8>)> {
+    use std::fmt::Write as _;
+    let label = crate::report::technique_label;
+    let mut csv = String::from("scene,technique,snap_texels,frame,shimmering_pixels\n");
+    let mut md = format!(
+        "# Temporal stability: `{scene}`\n\nThe camera walks {STEP_FRACTION} of the scene's radius and turns 0.1° per frame. A pixel shimmers when its shadow state flips between consecutive frames while the exact truth there does not.\n\n| technique | snapping | mean shimmering pixels per frame | largest |\n|---|---|---:|---:|\n"
+    );
+    for s in stability {
+        let snapping = if s.snap_texels == 0 {
+            "off".to_string()
+        } else {
+            format!("{} texel", s.snap_texels)
+        };
+        match &s.shimmer {
+            Ok(counts) => {
+                for (k, c) in counts.iter().enumerate() {
+                    writeln!(
+                        csv,
+                        "{scene},{},{},{},{c}",
+                        label(s.technique),
+                        s.snap_texels,
+                        k + 1
+                    )
+                    .expect("writing to a string");
+                }
+                #[expect(clippy::cast_precision_loss, reason = "pixel counts")]
+                let mean = counts.iter().sum::<u64>() as f64 / counts.len().max(1) as f64;
+                let largest = counts.iter().max().copied().unwrap_or(0);
+                writeln!(
+                    md,
+                    "| {} | {snapping} | {mean:.1} | {largest} |",
+                    label(s.technique)
+                )
+                .expect("writing to a string");
+            }
+            Err(reason) => {
+                writeln!(
+                    md,
+                    "| {} | {snapping} | not defined: {reason} | |",
+                    label(s.technique)
+                )
+                .expect("writing to a string");
+            }
+        }
+    }
+    vec![
+        ("temporal.csv".into(), csv.into_bytes()),
+        ("temporal.md".into(), md.into_bytes()),
+    ]
+}

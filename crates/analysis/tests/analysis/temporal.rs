@@ -1,0 +1,44 @@
+//! The camera walk of `temporal`: it starts at the scene's camera, and every frame of the default
+//! walk on `outdoor` can be planned by every technique — frame 16 once failed for `optimal`, whose
+//! four samples nearly on one line fit a window the focus body had no volume in.
+
+use shadowlab_analysis::temporal::pose_at;
+use shadowlab_hull::Aabb;
+use shadowlab_scene::builtin_scene;
+use shadowlab_shadow::optimal::{self, OptimalOptions, Readback};
+use shadowlab_shadow::{FocusPolicy, LightSource, PlanInput, scene_eye};
+
+/// Rounding of a re-orthonormalised unit vector.
+const ROUNDING: f64 = 1e-14;
+
+#[test]
+fn the_walk_starts_at_the_scene_camera() {
+    let scene = builtin_scene("outdoor").unwrap();
+    let start = pose_at(&scene, 0).unwrap();
+    let camera = scene.camera.pose;
+    assert_eq!(start.eye(), camera.eye());
+    // The pose is rebuilt by look_to, which re-orthonormalises: equal up to rounding.
+    assert!(start.forward().distance(camera.forward()) < ROUNDING);
+    assert!(start.up().distance(camera.up()) < ROUNDING);
+    let moved = pose_at(&scene, 5).unwrap();
+    assert!(moved.eye().distance(scene.camera.pose.eye()) > 0.0);
+}
+
+#[test]
+fn a_thin_sample_window_keeps_the_initial_map() {
+    let mut scene = builtin_scene("outdoor").unwrap();
+    scene.camera.pose = pose_at(&scene, 16).unwrap();
+    let bounds = scene.bounds();
+    let input = PlanInput {
+        eye: scene_eye(&scene),
+        light: LightSource::from_scene(&scene.lights[0]),
+        scene: Aabb::new(bounds.min, bounds.max).unwrap(),
+        nearest_visible_depth: None,
+        focus: FocusPolicy::Scene,
+    };
+    let options = OptimalOptions::default();
+    let readback = Readback::new(&scene, options.readback).unwrap();
+    let planned = optimal::plan(&scene, &input, &readback, &options).unwrap();
+    assert!(planned.report.samples.total() < 10, "{:?}", planned.report);
+    assert_eq!(planned.report.h, None, "{:?}", planned.report);
+}

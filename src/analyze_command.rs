@@ -1,0 +1,199 @@
+//! `shadowlab analyze`, `sweep-angle` and `temporal`: the measurements, written as reports.
+
+use std::path::{Path, PathBuf};
+
+use indicatif::{ProgressBar, ProgressStyle};
+use shadowlab_analysis::report::{filter_label, technique_label};
+use shadowlab_analysis::{report, study, sweep, temporal};
+use shadowlab_raster::{DepthFormat, image_out};
+use shadowlab_shadow::{Bias, Filter, Splits, Technique};
+
+use crate::args::{AnalyzeArgs, SweepArgs, TemporalArgs};
+use crate::error::CliError;
+use crate::output::{ensure_directory, print_line, write_atomic};
+use crate::shadow_settings::load_scene_argument;
+
+/// A progress bar on standard error, drawn only when it is a terminal.
+fn progress_bar(what: &str) -> ProgressBar {
+    let bar = ProgressBar::new(0);
+    bar.set_style(
+        ProgressStyle::with_template("{msg} [{bar:30}] {pos}/{len} {elapsed}")
+            .expect("a valid template")
+            .progress_chars("=> "),
+    );
+    bar.set_message(what.to_string());
+    bar
+}
+
+/// The techniques named on the command line (`TECHNIQUE` or `lispsm:PARAMETER`).
+pub(crate) fn parse_techniques(specs: &[String], flag: &str) -> Result<Vec<Technique>, CliError> {
+    specs
+        .iter()
+        .map(|spec| {
+            let (key, parameter) = spec
+                .split_once(':')
+                .map_or((spec.as_str(), None), |(k, p)| (k, Some(p)));
+            Technique::parse(key, parameter)
+                .map_err(|e| CliError::Input(format!("invalid {flag}: {e}")))
+        })
+        .collect()
+}
+
+fn write_all(dir: &Path, files: &[(String, Vec<u8>)]) -> Result<(), CliError> {
+    ensure_directory(dir, "--out")?;
+    for (name, bytes) in files {
+        let path = dir.join(name);
+        if let Some(parent) = path.parent() {
+            ensure_directory(parent, "--out")?;
+        }
+        write_atomic(&path, bytes)?;
+    }
+    Ok(())
+}
+
+pub(crate) fn analyze(args: &AnalyzeArgs) -> Result<(), CliError> {
+    let scene = load_scene_argument(args.scene.as_deref())?;
+    let techniques = parse_techniques(&args.techniques, "--techniques")?;
+    let filters = args
+        .filters
+        .iter()
+        .map(|f| {
+            Filter::parse(&f.replace(';', ","))
+                .map_err(|e| CliError::Input(format!("invalid --filters: {e}")))
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    let options = study::StudyOptions {
+        techniques,
+        resolutions: args.resolutions.clone(),
+        partitions: args.splits.iter().map(|s| *s as usize).collect(),
+        splits: Splits::parse(&args.split_scheme)
+            .map_err(|e| CliError::Input(format!("invalid --split-scheme: {e}")))?,
+        filters,
+        bias: Bias::parse(&args.bias)
+            .map_err(|e| CliError::Input(format!("invalid --bias: {e}")))?,
+        format: DepthFormat::F32,
+        map_truth: args.map_truth,
+        // Pictures at the resolution closest to 1024 texels.
+        pictures_at: args
+            .resolutions
+            .iter()
+            .copied()
+            .min_by_key(|r| r.abs_diff(1024)),
+    };
+    let bar = progress_bar("analyze");
+    let result = study::run(&scene, &options, |done, total| {
+        bar.set_length(total as u64);
+        bar.set_position(done as u64);
+    });
+    bar.finish_and_clear();
+    let study = result.map_err(|e| CliError::Input(format!("{}: {e}", scene.name)))?;
+    let report = report::report(&study).map_err(|e| CliError::Failure(anyhow::anyhow!("{e}")))?;
+    let mut files = vec![
+        ("report.md".to_string(), report.markdown.into_bytes()),
+        ("results.csv".to_string(), report.csv.into_bytes()),
+        ("results.json".to_string(), report.json.into_bytes()),
+        ("pareto.svg".to_string(), report.pareto_svg.into_bytes()),
+        ("pareto.png".to_string(), report.pareto_png),
+    ];
+    let (w, h) = (study.width, study.height);
+    let failure = |e: shadowlab_raster::RasterError| CliError::Failure(anyhow::anyhow!("{e}"));
+    for pictures in &study.pictures {
+        let label = technique_label(pictures.setting.technique).replace('/', "-");
+        files.push((
+            format!("images/heatmap-{label}.png"),
+            image_out::rgb_png(&pictures.heatmap, w, h).map_err(failure)?,
+        ));
+        files.push((
+            format!("images/difference-{label}.png"),
+            image_out::rgb_png(&pictures.difference, w, h).map_err(failure)?,
+        ));
+    }
+    let out = args
+        .out
+        .clone()
+        .unwrap_or_else(|| PathBuf::from("out/analyze").join(&scene.name));
+    write_all(&out, &files)?;
+    for m in report::pareto_front(&study) {
+        let o = m.outcome.as_ref().expect("defined");
+        print_line(&format!(
+            "{:<24} {:>5}² {} map(s) {:<10} {:>8} misclassified  {:>8.1} ms",
+            technique_label(m.setting.technique),
+            m.setting.resolution,
+            m.setting.partitions,
+            filter_label(&m.setting.filter),
+            o.errors.total(),
+            o.time().as_secs_f64() * 1e3
+        ))?;
+    }
+    print_line(&out.join("report.md").display().to_string())
+}
+
+pub(crate) fn sweep_angle(args: &SweepArgs) -> Result<(), CliError> {
+    let mut scene = load_scene_argument(args.scene.as_deref())?;
+    if let Some((w, h)) = args.eye_size {
+        (scene.camera.width, scene.camera.height) = (w, h);
+    }
+    let techniques = parse_techniques(&args.techniques, "--techniques")?;
+    let side = if args.behind {
+        sweep::Side::Behind
+    } else {
+        sweep::Side::Front
+    };
+    let angles = sweep::default_angles();
+    let bar = progress_bar("sweep");
+    let result = sweep::sweep(
+        &scene,
+        &techniques,
+        &angles,
+        side,
+        args.resolution,
+        |done, total| {
+            bar.set_length(total as u64);
+            bar.set_position(done as u64);
+        },
+    );
+    bar.finish_and_clear();
+    let points = result.map_err(|e| CliError::Input(format!("{}: {e}", scene.name)))?;
+    let written = sweep::write(&scene.name, &points)
+        .map_err(|e| CliError::Failure(anyhow::anyhow!("{e}")))?;
+    let out = args
+        .out
+        .clone()
+        .unwrap_or_else(|| PathBuf::from("out/sweep").join(&scene.name));
+    write_all(&out, &written)?;
+    for (name, _) in &written {
+        print_line(&out.join(name).display().to_string())?;
+    }
+    Ok(())
+}
+
+pub(crate) fn temporal(args: &TemporalArgs) -> Result<(), CliError> {
+    let mut scene = load_scene_argument(args.scene.as_deref())?;
+    if let Some((w, h)) = args.eye_size {
+        (scene.camera.width, scene.camera.height) = (w, h);
+    }
+    let techniques = parse_techniques(&args.techniques, "--techniques")?;
+    let bar = progress_bar("temporal");
+    let result = temporal::temporal(
+        &scene,
+        &techniques,
+        args.frames as usize,
+        args.resolution,
+        |done, total| {
+            bar.set_length(total as u64);
+            bar.set_position(done as u64);
+        },
+    );
+    bar.finish_and_clear();
+    let stability = result.map_err(|e| CliError::Input(format!("{}: {e}", scene.name)))?;
+    let written = temporal::write(&scene.name, &stability);
+    let out = args
+        .out
+        .clone()
+        .unwrap_or_else(|| PathBuf::from("out/temporal").join(&scene.name));
+    write_all(&out, &written)?;
+    for (name, _) in &written {
+        print_line(&out.join(name).display().to_string())?;
+    }
+    Ok(())
+}

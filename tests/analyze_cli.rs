@@ -1,0 +1,200 @@
+//! `shadowlab analyze`, `sweep-angle` and `temporal`: every file written, results repeatable bit for
+//! bit (all but the timings), the Chong–Gortler table, continuity at γ = 0, and bad input.
+
+use std::fs;
+use std::path::Path;
+
+use crate::support::{shadowlab, stderr, stdout};
+
+/// A small scene: a plane, a box and a pole under a sun, 160 × 120 pixels.
+fn scene_file(dir: &Path) -> String {
+    let path = dir.join("small.toml");
+    fs::write(
+        &path,
+        "[camera]\nposition = [0.0, 3.0, 12.0]\ntarget = [0.0, 0.0, -10.0]\nimage = [160, 120]\n\
+         far = 60.0\n\
+         [[light]]\ndirection = [-0.6, -1.0, -0.2]\n\
+         [[mesh]]\nshape = \"plane\"\nsize = [60.0, 60.0]\n\
+         [[mesh]]\nshape = \"box\"\nsize = [2.0, 2.0, 2.0]\ntranslate = [0.0, 1.0, 0.0]\n\
+         [[mesh]]\nshape = \"cylinder\"\nradius = 0.2\nheight = 4.0\ntranslate = [3.0, 2.0, -8.0]\n",
+    )
+    .unwrap();
+    path.display().to_string()
+}
+
+/// The columns of `results.csv` that do not depend on the clock (everything before the timings).
+fn untimed(csv: &str) -> Vec<String> {
+    csv.lines()
+        .map(|line| {
+            let fields: Vec<&str> = line.split(',').collect();
+            fields[..fields.len() - 4].join(",")
+        })
+        .collect()
+}
+
+#[test]
+fn analyze_writes_the_report_and_repeats_its_results_exactly() {
+    let scenes = tempfile::tempdir().unwrap();
+    let scene = scene_file(scenes.path());
+    let (first, second) = (tempfile::tempdir().unwrap(), tempfile::tempdir().unwrap());
+    for dir in [first.path(), second.path()] {
+        let output = shadowlab(
+            &[
+                "analyze",
+                &scene,
+                "--techniques",
+                "uniform_limited,optimal,psm",
+                "--resolutions",
+                "128,256",
+                "--map-truth",
+                "--out",
+                dir.to_str().unwrap(),
+            ],
+            None,
+        );
+        assert!(output.status.success(), "{}", stderr(&output));
+        assert!(
+            stdout(&output).contains("misclassified"),
+            "{}",
+            stdout(&output)
+        );
+    }
+    let read = |dir: &Path, name: &str| fs::read_to_string(dir.join(name)).unwrap();
+    let csv = read(first.path(), "results.csv");
+    assert_eq!(csv.lines().count(), 1 + 3 * 2, "{csv}");
+    assert_eq!(untimed(&csv), untimed(&read(second.path(), "results.csv")));
+
+    let report = read(first.path(), "report.md");
+    for needle in [
+        "## Misclassified pixels",
+        "Against Chong and Gortler's Table 1",
+        "disagrees with it at",
+        "Pareto front",
+    ] {
+        assert!(
+            report.contains(needle),
+            "report.md lacks {needle:?}:\n{report}"
+        );
+    }
+    let json: serde_json::Value =
+        serde_json::from_str(&read(first.path(), "results.json")).unwrap();
+    assert_eq!(
+        json["measurements"].as_array().map(Vec::len),
+        Some(6),
+        "{json}"
+    );
+    for file in [
+        "pareto.png",
+        "images/heatmap-optimal.png",
+        "images/difference-psm.png",
+    ] {
+        let bytes = fs::read(first.path().join(file)).unwrap();
+        assert!(bytes.starts_with(b"\x89PNG"), "{file} is not a PNG");
+    }
+    assert!(read(first.path(), "pareto.svg").starts_with("<svg"));
+}
+
+#[test]
+fn sweep_angle_reaches_gamma_zero_continuously() {
+    let scenes = tempfile::tempdir().unwrap();
+    let scene = scene_file(scenes.path());
+    let out = tempfile::tempdir().unwrap();
+    let output = shadowlab(
+        &[
+            "sweep-angle",
+            &scene,
+            "--techniques",
+            "uniform,lispsm,lispsm:minimax,psm",
+            "--resolution",
+            "128",
+            "--out",
+            out.path().to_str().unwrap(),
+        ],
+        None,
+    );
+    assert!(output.status.success(), "{}", stderr(&output));
+    let csv = fs::read_to_string(out.path().join("sweep.csv")).unwrap();
+    // technique → misclassified pixels at γ = 0, 1e-9 and 1e-6 rad.
+    for technique in ["uniform", "lispsm", "lispsm/minimax", "psm"] {
+        let near_zero: Vec<u64> = csv
+            .lines()
+            .skip(1)
+            .map(|line| line.split(',').collect::<Vec<_>>())
+            .filter(|f| f[1] == technique && f[2].parse::<f64>().unwrap() <= 1e-6)
+            .map(|f| {
+                assert_eq!(f[4], "true", "{technique} not defined at γ = {}", f[2]);
+                f[5].parse().unwrap()
+            })
+            .collect();
+        assert_eq!(near_zero.len(), 3, "{technique}: {csv}");
+        let spread = near_zero.iter().max().unwrap() - near_zero.iter().min().unwrap();
+        // 160 × 120 pixels: a jump of more than 1 % of them would be a discontinuity.
+        assert!(spread <= 192, "{technique}: {near_zero:?} near γ = 0");
+    }
+    for file in ["sweep.md", "sweep.svg", "sweep.png"] {
+        assert!(out.path().join(file).is_file(), "{file} missing");
+    }
+}
+
+#[test]
+fn temporal_counts_shimmer_with_and_without_snapping() {
+    let scenes = tempfile::tempdir().unwrap();
+    let scene = scene_file(scenes.path());
+    let out = tempfile::tempdir().unwrap();
+    let output = shadowlab(
+        &[
+            "temporal",
+            &scene,
+            "--frames",
+            "3",
+            "--techniques",
+            "uniform,optimal",
+            "--resolution",
+            "256",
+            "--out",
+            out.path().to_str().unwrap(),
+        ],
+        None,
+    );
+    assert!(output.status.success(), "{}", stderr(&output));
+    let csv = fs::read_to_string(out.path().join("temporal.csv")).unwrap();
+    // Two techniques × snapping off and on × two frame pairs.
+    assert_eq!(csv.lines().count(), 1 + 2 * 2 * 2, "{csv}");
+    let md = fs::read_to_string(out.path().join("temporal.md")).unwrap();
+    assert!(md.contains("| uniform | 1 texel |"), "{md}");
+}
+
+#[test]
+fn bad_input_exits_with_2_names_the_problem_and_writes_nothing() {
+    let out = tempfile::tempdir().unwrap();
+    let target = out.path().join("report");
+    let target = target.to_str().unwrap();
+    for (args, needle) in [
+        (vec!["analyze", "--techniques", "bogus"], "--techniques"),
+        (vec!["analyze", "--resolutions", "0"], "--resolutions"),
+        (vec!["analyze", "--filters", "pcf:0"], "--filters"),
+        (vec!["analyze", "--bias", "slope:x"], "--bias"),
+        (vec!["analyze", "no-such-scene"], "no-such-scene"),
+        (
+            vec!["sweep-angle", "--techniques", "lispsm:nope"],
+            "--techniques",
+        ),
+        (vec!["temporal", "--frames", "1"], "--frames"),
+    ] {
+        let mut all = args.clone();
+        all.extend(["--out", target]);
+        let output = shadowlab(&all, None);
+        assert_eq!(
+            output.status.code(),
+            Some(2),
+            "{args:?}: {}",
+            stderr(&output)
+        );
+        assert!(
+            stderr(&output).contains(needle),
+            "{args:?}: {}",
+            stderr(&output)
+        );
+        assert!(!Path::new(target).exists(), "{args:?} wrote {target}");
+    }
+}
