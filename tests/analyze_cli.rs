@@ -70,6 +70,7 @@ fn analyze_writes_the_report_and_repeats_its_results_exactly() {
         "Against Chong and Gortler's Table 1",
         "disagrees with it at",
         "Pareto front",
+        "## Along the view axis",
     ] {
         assert!(
             report.contains(needle),

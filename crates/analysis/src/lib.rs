@@ -12,6 +12,7 @@
 //! | [`study`] | one scene, every combination of technique, resolution, partitions and filter, measured against one exact truth in one run | CG06 §5 (their table) |
 //! | [`report`] | a study as `report.md`, `results.csv`, `results.json` and a Pareto plot of time against misclassified pixels | — |
 //! | [`sweep`] | the light swept from parallel to perpendicular to the view: errors and aliasing per angle | formulas.md §9 (near-parallel policies) |
+//! | [`view_axis`] | the perspective error along the view axis, measured on each technique's matrices over the closed form of `shadowlab-params` | LiSPSM eq. 3, GMNPR eq. 2, CAD eq. 12 |
 //! | [`temporal`] | a moving camera: pixels whose shadow flips while the truth does not ("shimmer"), with and without texel snapping | production-variants.md (snapping) |
 //!
 //! ```no_run
@@ -48,5 +49,6 @@ pub mod study;
 pub mod sweep;
 pub mod temporal;
 pub mod truth;
+pub mod view_axis;
 
 pub use error::AnalysisError;

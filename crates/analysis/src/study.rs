@@ -16,6 +16,7 @@ use crate::classify::{Misclassification, difference_image, misclassification};
 use crate::error::AnalysisError;
 use crate::images::{HeatScale, heatmap};
 use crate::truth::{Truth, disagreement, exact_truth, map_truth, scene_bvh};
+use crate::view_axis::{AxisCurve, curves};
 
 /// Side of the uniform shadow map used as the alternative truth (Chong and Gortler used 3700²).
 pub const MAP_TRUTH_RESOLUTION: u32 = 4096;
@@ -122,6 +123,8 @@ pub struct Study {
     pub truth: Truth,
     /// Pictures, if asked for ([`StudyOptions::pictures_at`]), in technique order.
     pub pictures: Vec<Pictures>,
+    /// The error along the view axis per technique (first light): measured over the closed form.
+    pub view_axis: Vec<AxisCurve>,
 }
 
 /// Every combination of `options`, in order.
@@ -267,6 +270,9 @@ pub fn run(
     } else {
         None
     };
+    let mut techniques = options.techniques.clone();
+    techniques.dedup();
+    let view_axis = curves(scene, &techniques)?;
     let all = settings(options);
     let mut measurements = Vec::with_capacity(all.len());
     let mut pictures = Vec::new();
@@ -314,5 +320,6 @@ pub fn run(
         measurements,
         truth,
         pictures,
+        view_axis,
     })
 }

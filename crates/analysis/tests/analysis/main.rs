@@ -7,6 +7,7 @@
 //!   per pixel, `measure`'s view-axis error at 90° and at any γ), statistics, thread counts;
 //! - `images`: the heat map's colours and scale;
 //! - `temporal`: the camera walk, and a frame where the optimizer keeps the initial map;
+//! - `view_axis`: measured on the matrices against the closed form at 90°;
 //! - `support`: scenes, hand-built eye images, the seeded configuration.
 
 mod aliasing;
@@ -15,3 +16,4 @@ mod images;
 mod support;
 mod temporal;
 mod truth;
+mod view_axis;
