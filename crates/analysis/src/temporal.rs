@@ -10,6 +10,7 @@ use shadowlab_shadow::{
 };
 use shadowlab_trace::Bvh;
 
+use crate::classify::LIT_THRESHOLD;
 use crate::error::AnalysisError;
 use crate::truth::exact_truth;
 
@@ -17,8 +18,6 @@ use crate::truth::exact_truth;
 pub const STEP_FRACTION: f64 = 0.002;
 /// How far it turns per frame (yaw about +y), radians.
 pub const TURN_PER_FRAME: f64 = 0.1 * std::f64::consts::PI / 180.0;
-/// A pixel counts as lit when its lit fraction is at least this.
-const LIT: f64 = 0.5;
 
 /// The camera pose of frame `k`: the scene's camera walked `k` steps along its horizontal view
 /// direction and turned `k` times by [`TURN_PER_FRAME`].
@@ -96,7 +95,7 @@ pub fn temporal(
                     eye.triangle
                         .iter()
                         .zip(&shadows.lit[0])
-                        .map(|(t, l)| (*t != NO_TRIANGLE).then_some(*l >= LIT))
+                        .map(|(t, l)| (*t != NO_TRIANGLE).then_some(*l >= LIT_THRESHOLD))
                         .collect(),
                 ),
                 Err(ShadowError::NotDefined { reason, .. }) => *state = Err(reason),

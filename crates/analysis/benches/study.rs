@@ -1,0 +1,71 @@
+//! Criterion benchmark of a whole study: the default `shadowlab analyze` on the built-in `outdoor`
+//! scene (1024 × 768) — eye pass, BVH, exact truth, then every technique (uniform,
+//! uniform_limited, psm, lispsm, lispsm/minimax, logarithmic, optimal) at 750², 1000², …, 2000²,
+//! each rendered, looked up and measured (misclassification, per-pixel footprints) — without the
+//! pictures and the writing of files. The issue bounds it by 10 s on 2 cores.
+//!
+//! Also the study's cheapest unit, one combination (lispsm at 2000²) on a prepared eye pass, to
+//! separate the fixed cost from the per-combination one. Everything is deterministic.
+//!
+//! Figures are recorded with the machine and date in docs/benchmarks.md.
+
+use std::hint::black_box;
+use std::time::Duration;
+
+use criterion::{Criterion, criterion_group, criterion_main};
+use shadowlab_analysis::study::{self, EyePass, Setting, StudyOptions};
+use shadowlab_analysis::truth::{exact_truth, scene_bvh};
+use shadowlab_raster::DepthFormat;
+use shadowlab_scene::builtin_scene;
+use shadowlab_shadow::{Bias, Filter, Splits, Technique, WarpChoice};
+
+fn default_options() -> StudyOptions {
+    StudyOptions {
+        techniques: Technique::KEYS
+            .iter()
+            .map(|key| Technique::parse(key, None).expect("a known key"))
+            .chain([Technique::parse("lispsm", Some("minimax")).expect("a known rule")])
+            .collect(),
+        resolutions: vec![750, 1000, 1250, 1500, 1750, 2000],
+        partitions: vec![1],
+        splits: Splits::Uniform,
+        filters: vec![Filter::Nearest],
+        bias: Bias::DEFAULT,
+        format: DepthFormat::F32,
+        map_truth: false,
+        pictures_at: None,
+    }
+}
+
+fn whole_study(c: &mut Criterion) {
+    let scene = builtin_scene("outdoor").expect("the built-in outdoor scene");
+    let options = default_options();
+    let mut group = c.benchmark_group("study");
+    group.sample_size(10);
+    group.warm_up_time(Duration::from_secs(1));
+    group.measurement_time(Duration::from_secs(60));
+    group.bench_function("outdoor/default", |b| {
+        b.iter(|| study::run(black_box(&scene), &options, |_, _| {}).expect("the study"));
+    });
+
+    let eye = EyePass::new(&scene).expect("the eye pass");
+    let bvh = scene_bvh(&scene).expect("the hierarchy");
+    let truth = exact_truth(&scene, &eye.image, &bvh).expect("the truth");
+    let setting = Setting {
+        technique: Technique::Lispsm(WarpChoice::PAPER),
+        resolution: 2000,
+        partitions: 1,
+        filter: Filter::Nearest,
+    };
+    group.measurement_time(Duration::from_secs(10));
+    group.bench_function("outdoor/one-combination", |b| {
+        b.iter(|| {
+            let shadows = study::render(&scene, &options, &setting, &eye, &bvh).expect("render");
+            study::measure(&scene, &truth, &eye.image, &shadows)
+        });
+    });
+    group.finish();
+}
+
+criterion_group!(benches, whole_study);
+criterion_main!(benches);
