@@ -65,13 +65,21 @@ use glam::{DMat2, DMat4, DVec2, DVec3};
 use rayon::prelude::*;
 use shadowlab_raster::{EyeImage, NO_TRIANGLE};
 use shadowlab_scene::Camera;
-use shadowlab_shadow::{Eye, LightSetup, ShadowMapping, measure};
+use shadowlab_shadow::{LightSetup, ShadowMapping};
 
 /// Relative step of the central differences for non-projective maps, in units of the point's
 /// distance from the eye (as `shadowlab_shadow::measure` steps along the view axis): with
 /// Richardson extrapolation the truncation error is of order `STEP⁴` and the rounding error of
 /// order `ε/STEP`, both far below the 1e-6 the tests ask for.
 pub const STEP: f64 = 1e-3;
+
+/// Below this `cos β` (the surface within 0.057° of edge-on to the light's rays) a point has no
+/// footprint: a texel's shaft of light meets the surface along a line, `det J → 0` for every map,
+/// and rounding alone decides how large the quotient comes out (1e16 and more on the vertical
+/// faces of `outdoor` under a light straight above). Such points are lit or shadowed by their
+/// facing, not by the map's resolution, so the statistics leave them out — as CG06's optimizer
+/// leaves grazed samples out of h (`shadowlab_shadow::optimal::GRAZING_COS`, the same value).
+pub const GRAZING_COS: f64 = 1e-3;
 
 /// How many pixels one shadow-map texel covers on screen, and its two factors (module docs).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -203,8 +211,8 @@ pub fn texel_jacobian(
 
 /// The footprint of `setup`'s texels (map side `resolution`) at the visible point `point` with
 /// surface normal `normal`, seen by `camera` (its pose, projection and image size). `None` where
-/// [`texel_jacobian`] is undefined or the plane is edge-on to the light (`cos β = 0`, where the
-/// footprint is unbounded and the factors undefined).
+/// [`texel_jacobian`] is undefined or the plane is edge-on to the light (`cos β` below
+/// [`GRAZING_COS`], where the footprint is unbounded and the factors undefined).
 #[must_use]
 pub fn footprint(
     setup: &LightSetup,
@@ -229,6 +237,9 @@ fn footprint_of(local: &Local) -> Option<Footprint> {
     let (a, b, c, d) = (j.x_axis.x, j.y_axis.x, j.x_axis.y, j.y_axis.y);
     let sigma_max = 0.5 * ((a + d).hypot(c - b) + (a - d).hypot(b + c));
     let total = sigma_max / j.determinant().abs();
+    if local.cos_beta < GRAZING_COS {
+        return None;
+    }
     let projection = local.cos_alpha / local.cos_beta;
     (total.is_finite() && projection.is_finite() && projection > 0.0).then(|| Footprint {
         total,
@@ -303,15 +314,4 @@ pub fn stats(values: impl Iterator<Item = f64>) -> AliasingStats {
         mean,
         count: n as u64,
     }
-}
-
-/// `dp/ds` measured along `eye`'s view axis at each of `depths`
-/// (`shadowlab_shadow::measure::view_axis_error`: `(1/z)·dz/ds`, the map spanning `[0, 1]`), to
-/// plot over the closed forms of `shadowlab-params`; `None` where the map does not map the point.
-#[must_use]
-pub fn view_axis_curve(setup: &LightSetup, eye: &Eye, depths: &[f64]) -> Vec<(f64, Option<f64>)> {
-    depths
-        .iter()
-        .map(|&z| (z, measure::view_axis_error(&setup.mapping, eye, z)))
-        .collect()
 }

@@ -170,7 +170,7 @@ pub fn write(scene: &str, points: &[SweepPoint]) -> Result<Vec<(String, Vec<u8>)
         acc
     });
     let mut md = format!(
-        "# Light swept toward the view direction: `{scene}`\n\nMisclassified pixels (99th percentile of the texel footprint, pixels per texel — the maximum itself sits at surfaces grazed by the light, where any map's footprint is unbounded) at the smallest angles, where every technique must reach the uniform map continuously. A jump between larger angles can be physical: the light crossing the plane of a large surface (the ground) changes which side of it is lit.\n\n| technique | γ = 0 | 1e-9 rad | 1e-6 rad | 0.1° | 1° | 10° | 90° |\n|---|---:|---:|---:|---:|---:|---:|---:|\n"
+        "# Light swept toward the view direction: `{scene}`\n\nMisclassified pixels (99th percentile of the texel footprint, pixels per texel — the maximum sits at silhouettes and near-grazing surfaces, where any map's footprint grows without bound) at the smallest angles, where every technique must reach the uniform map continuously. A jump between larger angles can be physical: the light crossing the plane of a large surface (the ground) changes which side of it is lit.\n\n| technique | γ = 0 | 1e-9 rad | 1e-6 rad | 0.1° | 1° | 10° | 90° |\n|---|---:|---:|---:|---:|---:|---:|---:|\n"
     );
     let near = [
         0.0,
