@@ -6,12 +6,12 @@ use indicatif::{ProgressBar, ProgressStyle};
 use shadowlab_analysis::report::{filter_label, technique_label};
 use shadowlab_analysis::{report, study, sweep, temporal};
 use shadowlab_raster::{DepthFormat, image_out};
-use shadowlab_shadow::{Bias, Filter, Splits, Technique};
+use shadowlab_shadow::{Bias, Filter, Splits};
 
 use crate::args::{AnalyzeArgs, SweepArgs, TemporalArgs};
 use crate::error::CliError;
 use crate::output::{ensure_directory, print_line, write_atomic};
-use crate::shadow_settings::load_scene_argument;
+use crate::shadow_settings::{load_scene_argument, parse_techniques};
 
 /// A progress bar on standard error, drawn only when it is a terminal.
 fn progress_bar(what: &str) -> ProgressBar {
@@ -23,20 +23,6 @@ fn progress_bar(what: &str) -> ProgressBar {
     );
     bar.set_message(what.to_string());
     bar
-}
-
-/// The techniques named on the command line (`TECHNIQUE` or `lispsm:PARAMETER`).
-pub(crate) fn parse_techniques(specs: &[String], flag: &str) -> Result<Vec<Technique>, CliError> {
-    specs
-        .iter()
-        .map(|spec| {
-            let (key, parameter) = spec
-                .split_once(':')
-                .map_or((spec.as_str(), None), |(k, p)| (k, Some(p)));
-            Technique::parse(key, parameter)
-                .map_err(|e| CliError::Input(format!("invalid {flag}: {e}")))
-        })
-        .collect()
 }
 
 fn write_all(dir: &Path, files: &[(String, Vec<u8>)]) -> Result<(), CliError> {

@@ -3,14 +3,14 @@
 use anyhow::Context;
 use shadowlab_raster::{DepthFormat, NO_TRIANGLE};
 use shadowlab_shadow::{
-    Bias, Filter, FrameOptions, Lookup, ShadowError, Splits, Technique, render_frame, view,
+    Bias, Filter, FrameOptions, Lookup, ShadowError, Splits, render_frame, view,
 };
 use tiny_skia::{Color, Pixmap, PixmapPaint, Transform};
 
 use crate::args::CompareArgs;
 use crate::error::CliError;
 use crate::output::{print_line, write_atomic};
-use crate::shadow_settings::load_scene_argument;
+use crate::shadow_settings::{load_scene_argument, parse_techniques};
 
 /// Height of a picture's label, in pixels.
 const LABEL_HEIGHT: u32 = 30;
@@ -26,17 +26,7 @@ pub(crate) fn run(args: &CompareArgs) -> Result<(), CliError> {
             "invalid --crop: {cw}x{ch} at ({cx}, {cy}) does not fit the {width}x{height} image"
         )));
     }
-    let techniques: Vec<Technique> = args
-        .techniques
-        .iter()
-        .map(|spec| {
-            let (key, parameter) = spec
-                .split_once(':')
-                .map_or((spec.as_str(), None), |(k, p)| (k, Some(p)));
-            Technique::parse(key, parameter)
-                .map_err(|e| CliError::Input(format!("invalid --techniques: {e}")))
-        })
-        .collect::<Result<_, _>>()?;
+    let techniques = parse_techniques(&args.techniques, "--techniques")?;
     let columns = args
         .columns
         .min(u32::try_from(techniques.len()).unwrap_or(1))

@@ -1,6 +1,7 @@
-//! The scene argument and the shadow settings of `render` and `inspect`: a flag wins over the
-//! scene's `[shadow]` table, which wins over the defaults. A bad value is an input error naming
-//! the flag, or the scene file and field it came from.
+//! The scene argument, technique lists (`compare` and the study commands), and the shadow
+//! settings of `render` and `inspect`: a flag wins over the scene's `[shadow]` table, which wins
+//! over the defaults. A bad value is an input error naming the flag, or the scene file and field
+//! it came from.
 
 use std::path::Path;
 
@@ -137,4 +138,18 @@ fn scene_label(name: Option<&str>) -> String {
         Some(n) => format!("built-in scene {n}"),
         None => format!("built-in scene {DEFAULT_SCENE}"),
     }
+}
+
+/// The techniques named on the command line (`TECHNIQUE` or `lispsm:PARAMETER`).
+pub(crate) fn parse_techniques(specs: &[String], flag: &str) -> Result<Vec<Technique>, CliError> {
+    specs
+        .iter()
+        .map(|spec| {
+            let (key, parameter) = spec
+                .split_once(':')
+                .map_or((spec.as_str(), None), |(k, p)| (k, Some(p)));
+            Technique::parse(key, parameter)
+                .map_err(|e| CliError::Input(format!("invalid {flag}: {e}")))
+        })
+        .collect()
 }

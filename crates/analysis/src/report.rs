@@ -191,45 +191,35 @@ fn markdown(study: &Study) -> String {
         }
         chong_gortler(&mut md, &resolutions, &find);
         // Aliasing and time at every resolution, one table each.
-        writeln!(
-            md,
-            "\n### Texel footprint on screen (pixels per texel): max / 99th percentile / mean\n"
-        )
-        .unwrap();
-        writeln!(md, "| resolution | {} |", header.join(" | ")).unwrap();
-        writeln!(md, "|---:|{}", "---:|".repeat(header.len())).unwrap();
-        for r in &resolutions {
-            let cells: Vec<String> = techniques
-                .iter()
-                .map(|t| {
-                    find(*t, *r)
-                        .and_then(|m| m.outcome.as_ref().ok())
-                        .map_or("—".into(), |o| {
-                            let s = &o.footprint[0];
-                            format!("{:.2} / {:.2} / {:.2}", s.max, s.p99, s.mean)
-                        })
-                })
-                .collect();
-            writeln!(md, "| {r} | {} |", cells.join(" | ")).unwrap();
-        }
-        writeln!(
-            md,
-            "\n### Time per frame (planning + shadow pass + lookup, ms)\n"
-        )
-        .unwrap();
-        writeln!(md, "| resolution | {} |", header.join(" | ")).unwrap();
-        writeln!(md, "|---:|{}", "---:|".repeat(header.len())).unwrap();
-        for r in &resolutions {
-            let cells: Vec<String> = techniques
-                .iter()
-                .map(|t| {
-                    find(*t, *r)
-                        .and_then(|m| m.outcome.as_ref().ok())
-                        .map_or("—".into(), |o| format!("{:.1}", ms(o.time())))
-                })
-                .collect();
-            writeln!(md, "| {r} | {} |", cells.join(" | ")).unwrap();
-        }
+        let table = |md: &mut String, title: &str, cell: &dyn Fn(&Outcome) -> String| {
+            writeln!(md, "\n### {title}\n").unwrap();
+            writeln!(md, "| resolution | {} |", header.join(" | ")).unwrap();
+            writeln!(md, "|---:|{}", "---:|".repeat(header.len())).unwrap();
+            for r in &resolutions {
+                let cells: Vec<String> = techniques
+                    .iter()
+                    .map(|t| {
+                        find(*t, *r)
+                            .and_then(|m| m.outcome.as_ref().ok())
+                            .map_or("—".into(), cell)
+                    })
+                    .collect();
+                writeln!(md, "| {r} | {} |", cells.join(" | ")).unwrap();
+            }
+        };
+        table(
+            &mut md,
+            "Texel footprint on screen (pixels per texel): max / 99th percentile / mean",
+            &|o| {
+                let s = &o.footprint[0];
+                format!("{:.2} / {:.2} / {:.2}", s.max, s.p99, s.mean)
+            },
+        );
+        table(
+            &mut md,
+            "Time per frame (planning + shadow pass + lookup, ms)",
+            &|o| format!("{:.1}", ms(o.time())),
+        );
     }
     let undefined: Vec<&Measurement> = study
         .measurements
