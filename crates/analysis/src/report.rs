@@ -207,6 +207,9 @@ fn markdown(study: &Study) -> String {
                 writeln!(md, "| {r} | {} |", cells.join(" | ")).unwrap();
             }
         };
+        table(&mut md, "Falsely lit / falsely shadowed pixels", &|o| {
+            format!("{} / {}", o.errors.falsely_lit, o.errors.falsely_shadowed)
+        });
         table(
             &mut md,
             "Texel footprint on screen (pixels per texel): max / 99th percentile / mean",
@@ -217,8 +220,21 @@ fn markdown(study: &Study) -> String {
         );
         table(
             &mut md,
-            "Time per frame (planning + shadow pass + lookup, ms)",
-            &|o| format!("{:.1}", ms(o.time())),
+            "Its factors, 99th percentiles: perspective (dp/ds) / projection (cos α / cos β)",
+            &|o| format!("{:.2} / {:.2}", o.footprint[1].p99, o.footprint[2].p99),
+        );
+        table(
+            &mut md,
+            "Time per frame, ms: total (planning + shadow pass + lookup)",
+            &|o| {
+                format!(
+                    "{:.1} ({:.1} + {:.1} + {:.1})",
+                    ms(o.time()),
+                    ms(o.planning),
+                    ms(o.shadow_pass),
+                    ms(o.lookup)
+                )
+            },
         );
     }
     let undefined: Vec<&Measurement> = study
