@@ -2,7 +2,11 @@
 
 use glam::{DMat4, DVec3};
 use serde_json::{Value, json};
-use shadowlab_shadow::{LightSetup, ShadowMapping, eye_pass, plan_light};
+use shadowlab_shadow::optimal::{self, OptimalOptions, OptimalReport};
+use shadowlab_shadow::{
+    FocusPolicy, LightSetup, ShadowError, ShadowMapping, Technique, eye_pass, plan_light,
+    scene_input,
+};
 
 use crate::args::InspectArgs;
 use crate::error::CliError;
@@ -21,6 +25,23 @@ fn vector(v: DVec3) -> Value {
 /// A JSON number, `null` for infinity (the uniform map's λ).
 fn number(x: f64) -> Value {
     if x.is_finite() { json!(x) } else { Value::Null }
+}
+
+/// The optimizer's report: samples by rule, h before and after, the accepted steps.
+fn report_json(report: &OptimalReport) -> Value {
+    let n = report.samples;
+    json!({
+        "samples": {
+            "boundary": n.boundary,
+            "screen_border": n.screen_border,
+            "discontinuity": n.discontinuity,
+            "grazing": n.grazing,
+        },
+        "uniform_limited_h": report.uniform_limited_h,
+        "initial_h": report.initial_h,
+        "h": report.h,
+        "steps_degrees": report.steps_degrees,
+    })
 }
 
 fn setup_json(setup: &LightSetup) -> Value {
@@ -50,31 +71,57 @@ pub(crate) fn run(args: &InspectArgs) -> Result<(), CliError> {
     let (_, nearest) =
         eye_pass(scene).map_err(|e| CliError::Failure(anyhow::anyhow!("eye pass: {e}")))?;
     let mut lights = Vec::new();
+    // Per light, the optimizer's report per partition (the scene-optimized map only).
+    let mut reports: Vec<Vec<OptimalReport>> = Vec::new();
     for (l, light) in scene.lights.iter().enumerate() {
-        let parts = plan_light(
-            scene,
-            light,
-            resolved.technique,
-            resolved.splits,
-            resolved.partitions,
-            nearest,
-        )
-        .map_err(|e| {
+        let failed = |e: ShadowError| {
             CliError::Input(format!(
                 "{} with {}, light {l}: {e}",
                 scene.name, resolved.technique
             ))
-        })?;
-        lights.push(parts);
+        };
+        if resolved.technique == Technique::Optimal {
+            let input = scene_input(scene, light, nearest, FocusPolicy::Scene).map_err(failed)?;
+            let (parts, light_reports): (Vec<_>, Vec<_>) = optimal::plan_partitions(
+                scene,
+                &input,
+                resolved.splits,
+                resolved.partitions.max(1),
+                &OptimalOptions::default(),
+            )
+            .map_err(failed)?
+            .into_iter()
+            .unzip();
+            lights.push(parts);
+            reports.push(light_reports);
+        } else {
+            let parts = plan_light(
+                scene,
+                light,
+                resolved.technique,
+                resolved.splits,
+                resolved.partitions,
+                nearest,
+            )
+            .map_err(failed)?;
+            lights.push(parts);
+        }
     }
+    let report_of = |l: usize, p: usize| reports.get(l).and_then(|r| r.get(p));
     if args.json {
         let value = json!({
             "scene": scene.name,
             "technique": resolved.technique.to_string(),
             "nearest_visible_depth": nearest,
-            "lights": lights.iter().map(|parts| json!({
+            "lights": lights.iter().enumerate().map(|(l, parts)| json!({
                 "splits": std::iter::once(parts[0].near).chain(parts.iter().map(|p| p.far)).collect::<Vec<_>>(),
-                "partitions": parts.iter().map(|p| setup_json(&p.setup)).collect::<Vec<_>>(),
+                "partitions": parts.iter().enumerate().map(|(p, part)| {
+                    let mut value = setup_json(&part.setup);
+                    if let Some(report) = report_of(l, p) {
+                        value["optimizer"] = report_json(report);
+                    }
+                    value
+                }).collect::<Vec<_>>(),
             })).collect::<Vec<_>>(),
         });
         return print_line(
@@ -106,6 +153,31 @@ pub(crate) fn run(args: &InspectArgs) -> Result<(), CliError> {
                     "    λ = {}, n = {}, warp depth d = {}",
                     w.lambda, w.near_distance, w.depth
                 ))?;
+            }
+            if let Some(report) = report_of(l, p) {
+                let n = report.samples;
+                print_line(&format!(
+                    "    optimizer: {} samples ({} at shadow boundaries, {} on the image border, \
+                     {} at depth discontinuities; {} grazed, left out of h)",
+                    n.total(),
+                    n.boundary,
+                    n.screen_border,
+                    n.discontinuity,
+                    n.grazing
+                ))?;
+                match (report.initial_h, report.h) {
+                    (Some(initial), Some(h)) => print_line(&format!(
+                        "    h = {h:e} from {initial:e} (the uniform-limited window: {}), \
+                         steps {:?}°",
+                        report
+                            .uniform_limited_h
+                            .map_or("undefined".into(), |u| format!("{u:e}")),
+                        report.steps_degrees
+                    ))?,
+                    _ => print_line(
+                        "    nothing to optimize: the initial (uniform-limited) map is kept",
+                    )?,
+                }
             }
             if let Some(psm) = s.psm {
                 print_line(&format!(

@@ -124,6 +124,47 @@ fn inspect_reports_the_set_up_as_json() {
     );
 }
 
+/// Claim: for the scene-optimized map, `inspect` reports what the optimizer did per partition —
+/// samples by rule and h lowered from its start — and says so in text too.
+#[test]
+fn inspect_reports_the_optimizer() {
+    let output = shadowlab(
+        &[
+            "inspect",
+            "dueling-frusta",
+            "--technique",
+            "optimal",
+            "--splits",
+            "2",
+            "--json",
+        ],
+        None,
+    );
+    assert!(output.status.success(), "{}", stderr(&output));
+    let value: serde_json::Value = serde_json::from_str(&stdout(&output)).unwrap();
+    let parts = value["lights"][0]["partitions"].as_array().unwrap();
+    assert_eq!(parts.len(), 2);
+    for part in parts {
+        let report = &part["optimizer"];
+        assert_eq!(part["technique"], "optimal");
+        assert!(
+            report["samples"]["boundary"].as_u64().unwrap() > 0,
+            "{report}"
+        );
+        if let (Some(h), Some(initial)) = (report["h"].as_f64(), report["initial_h"].as_f64()) {
+            assert!(h <= initial, "{report}");
+        }
+    }
+    let text = stdout(&shadowlab(
+        &["inspect", "dueling-frusta", "--technique", "optimal"],
+        None,
+    ));
+    assert!(
+        text.contains("optimizer: ") && text.contains("samples ("),
+        "{text}"
+    );
+}
+
 #[test]
 fn bad_input_exits_with_2_and_names_the_problem() {
     let scenes = tempfile::tempdir().unwrap();

@@ -14,12 +14,11 @@
 //! PSM and the scene-optimized map have none, and spot lights, whose map is fitted in the spot's
 //! normalized device space, are not of the model: their curves carry the measurements only.
 
-use shadowlab_hull::Aabb;
 use shadowlab_params::{DepthRange, FrustumModel, HalfFov, LightAngle, WarpParameter};
 use shadowlab_scene::{Scene, SceneLight};
 use shadowlab_shadow::{
-    FocusPolicy, LightSetup, LightSource, PlanInput, ShadowError, Technique, measure, plan,
-    scene_eye,
+    FocusPolicy, LightSetup, PlanInput, ShadowError, Technique, measure, plan, scene_eye,
+    scene_input,
 };
 
 use crate::error::AnalysisError;
@@ -75,18 +74,11 @@ pub fn curves(scene: &Scene, techniques: &[Technique]) -> Result<Vec<AxisCurve>,
             technique: "view axis",
             reason: "the scene has no light".into(),
         })?;
-    let bounds = scene.bounds();
     let eye = scene_eye(scene);
-    let input = |focus| -> Result<PlanInput, AnalysisError> {
-        Ok(PlanInput {
-            eye,
-            light: LightSource::from_scene(light),
-            scene: Aabb::new(bounds.min, bounds.max).map_err(ShadowError::from)?,
-            nearest_visible_depth: None,
-            focus,
-        })
-    };
-    let (view_input, scene_input) = (input(FocusPolicy::ViewFrustum)?, input(FocusPolicy::Scene)?);
+    let (view_input, scene_input) = (
+        scene_input(scene, light, None, FocusPolicy::ViewFrustum)?,
+        scene_input(scene, light, None, FocusPolicy::Scene)?,
+    );
     let projection = eye.projection;
     let range = DepthRange::new(projection.near(), projection.far()).map_err(ShadowError::from)?;
     #[expect(clippy::cast_precision_loss, reason = "a small sample index")]

@@ -11,24 +11,17 @@
 use std::hint::black_box;
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use shadowlab_hull::Aabb;
 use shadowlab_scene::builtin_scene;
 use shadowlab_shadow::optimal::{self, OptimalOptions, Problem, Readback};
-use shadowlab_shadow::{FocusPolicy, LightSource, PlanInput, scene_eye};
+use shadowlab_shadow::{FocusPolicy, scene_input};
 
 fn optimizer(c: &mut Criterion) {
     let options = OptimalOptions::default();
     let mut group = c.benchmark_group("optimal");
     for name in ["outdoor", "dueling-frusta"] {
         let scene = builtin_scene(name).expect("a built-in scene");
-        let bounds = scene.bounds();
-        let input = PlanInput {
-            eye: scene_eye(&scene),
-            light: LightSource::from_scene(&scene.lights[0]),
-            scene: Aabb::new(bounds.min, bounds.max).expect("the scene box is valid"),
-            nearest_visible_depth: None,
-            focus: FocusPolicy::Scene,
-        };
+        let input = scene_input(&scene, &scene.lights[0], None, FocusPolicy::Scene)
+            .expect("the scene's plan input");
         group.bench_function(format!("readback/{name}"), |b| {
             b.iter(|| Readback::new(black_box(&scene), options.readback).expect("readback"));
         });

@@ -47,7 +47,7 @@ pub use map::{MapOptions, ShadowMap};
 pub use plan::{Partition, Splits, plan, plan_partitions};
 pub use render::{
     Frame, FrameOptions, LightShadow, Shadows, Timings, eye_pass, plan_light, render_frame,
-    render_shadows, scene_eye,
+    render_shadows, scene_eye, scene_input,
 };
 pub use setup::{LightSetup, PsmReport, ShadowMapping, WarpReport};
 pub use snap::snap_to_texels;

@@ -132,6 +132,27 @@ pub fn scene_eye(scene: &Scene) -> Eye {
     }
 }
 
+/// What a technique plans from for `light` of `scene`: the scene's camera and box, PSM's near plane
+/// at `nearest_visible_depth`, and the `focus` policy.
+///
+/// # Errors
+/// [`ShadowError::Geometry`] for a scene box that is not a valid box.
+pub fn scene_input(
+    scene: &Scene,
+    light: &SceneLight,
+    nearest_visible_depth: Option<f64>,
+    focus: FocusPolicy,
+) -> Result<PlanInput, ShadowError> {
+    let bounds = scene.bounds();
+    Ok(PlanInput {
+        eye: scene_eye(scene),
+        light: LightSource::from_scene(light),
+        scene: Aabb::new(bounds.min, bounds.max)?,
+        nearest_visible_depth,
+        focus,
+    })
+}
+
 /// Plans one light of `scene`: `partitions` z-partitions split by `splits` (one: the whole view),
 /// each with `technique`, PSM's near plane at `nearest_visible_depth`. [`Technique::Optimal`] is
 /// planned from the scene itself with the default [`OptimalOptions`]: a low-resolution eye pass,
@@ -147,14 +168,7 @@ pub fn plan_light(
     partitions: usize,
     nearest_visible_depth: Option<f64>,
 ) -> Result<Vec<Partition>, ShadowError> {
-    let bounds = scene.bounds();
-    let input = PlanInput {
-        eye: scene_eye(scene),
-        light: LightSource::from_scene(light),
-        scene: Aabb::new(bounds.min, bounds.max)?,
-        nearest_visible_depth,
-        focus: FocusPolicy::Scene,
-    };
+    let input = scene_input(scene, light, nearest_visible_depth, FocusPolicy::Scene)?;
     if technique == Technique::Optimal {
         return Ok(optimal::plan_partitions(
             scene,

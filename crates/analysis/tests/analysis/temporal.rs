@@ -3,10 +3,9 @@
 //! four samples nearly on one line fit a window the focus body had no volume in.
 
 use shadowlab_analysis::temporal::pose_at;
-use shadowlab_hull::Aabb;
 use shadowlab_scene::builtin_scene;
 use shadowlab_shadow::optimal::{self, OptimalOptions, Readback};
-use shadowlab_shadow::{FocusPolicy, LightSource, PlanInput, scene_eye};
+use shadowlab_shadow::{FocusPolicy, scene_input};
 
 /// Rounding of a re-orthonormalised unit vector.
 const ROUNDING: f64 = 1e-14;
@@ -28,14 +27,7 @@ fn the_walk_starts_at_the_scene_camera() {
 fn a_thin_sample_window_keeps_the_initial_map() {
     let mut scene = builtin_scene("outdoor").unwrap();
     scene.camera.pose = pose_at(&scene, 16).unwrap();
-    let bounds = scene.bounds();
-    let input = PlanInput {
-        eye: scene_eye(&scene),
-        light: LightSource::from_scene(&scene.lights[0]),
-        scene: Aabb::new(bounds.min, bounds.max).unwrap(),
-        nearest_visible_depth: None,
-        focus: FocusPolicy::Scene,
-    };
+    let input = scene_input(&scene, &scene.lights[0], None, FocusPolicy::Scene).unwrap();
     let options = OptimalOptions::default();
     let readback = Readback::new(&scene, options.readback).unwrap();
     let planned = optimal::plan(&scene, &input, &readback, &options).unwrap();

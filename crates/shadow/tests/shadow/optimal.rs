@@ -4,7 +4,7 @@
 
 use glam::{DMat2, DMat4, DVec2, DVec3, DVec4};
 use proptest::prelude::*;
-use shadowlab_hull::{Aabb, NdcDepth, Perspective};
+use shadowlab_hull::{NdcDepth, Perspective};
 use shadowlab_raster::DepthFormat;
 use shadowlab_scene::{Mesh, Scene, builtin_scene};
 use shadowlab_shadow::optimal::{
@@ -12,8 +12,8 @@ use shadowlab_shadow::optimal::{
     Sample,
 };
 use shadowlab_shadow::{
-    Bias, Filter, FocusPolicy, FrameOptions, LightSource, Lookup, PlanInput, ShadowError,
-    ShadowMapping, Splits, Technique, plan, plan_light, render_frame, scene_eye,
+    Bias, Filter, FocusPolicy, FrameOptions, Lookup, PlanInput, ShadowError, ShadowMapping, Splits,
+    Technique, plan, plan_light, render_frame,
 };
 
 use crate::support::{config, configuration, relative};
@@ -283,14 +283,7 @@ fn the_descent_keeps_a_known_optimum_and_returns_to_it() {
 
 /// The plan input of a scene's first light, focused on B.
 fn scene_input(scene: &Scene) -> PlanInput {
-    let bounds = scene.bounds();
-    PlanInput {
-        eye: scene_eye(scene),
-        light: LightSource::from_scene(&scene.lights[0]),
-        scene: Aabb::new(bounds.min, bounds.max).unwrap(),
-        nearest_visible_depth: None,
-        focus: FocusPolicy::Scene,
-    }
+    shadowlab_shadow::scene_input(scene, &scene.lights[0], None, FocusPolicy::Scene).unwrap()
 }
 
 /// The reduced rows of a planned map's P, scaled so that `|p̃_4| = 1`.

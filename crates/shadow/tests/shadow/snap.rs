@@ -3,25 +3,15 @@
 //! gives the same snapped map window when the fitted window's size does not change.
 
 use glam::DVec3;
-use shadowlab_hull::Aabb;
 use shadowlab_scene::builtin_scene;
-use shadowlab_shadow::{
-    FocusPolicy, LightSource, PlanInput, Technique, plan, scene_eye, snap_to_texels,
-};
+use shadowlab_shadow::{FocusPolicy, PlanInput, Technique, plan, scene_input, snap_to_texels};
 
 /// Tolerance of NDC coordinates computed through a 4×4 matrix product of magnitude ~1.
 const NDC_EPS: f64 = 1e-9;
 
 fn outdoor_input() -> PlanInput {
     let scene = builtin_scene("outdoor").unwrap();
-    let bounds = scene.bounds();
-    PlanInput {
-        eye: scene_eye(&scene),
-        light: LightSource::from_scene(&scene.lights[0]),
-        scene: Aabb::new(bounds.min, bounds.max).unwrap(),
-        nearest_visible_depth: None,
-        focus: FocusPolicy::Scene,
-    }
+    scene_input(&scene, &scene.lights[0], None, FocusPolicy::Scene).unwrap()
 }
 
 /// Claim: after snapping to a `texels`-texel grid the origin's window position is a multiple of
