@@ -54,7 +54,7 @@ const ALL_TECHNIQUES: &str =
 pub(crate) struct AnalyzeArgs {
     /// A built-in scene or a scene file. Default: outdoor.
     pub(crate) scene: Option<String>,
-    /// The techniques, comma-separated, each TECHNIQUE or lispsm:PARAMETER.
+    /// The techniques, comma-separated, each TECHNIQUE, lispsm:PARAMETER or optimal:refit.
     #[arg(long, value_delimiter = ',', default_value = ALL_TECHNIQUES)]
     pub(crate) techniques: Vec<String>,
     /// Shadow-map sides, comma-separated (Chong and Gortler's: 750 to 2000).
@@ -140,7 +140,7 @@ pub(crate) struct TemporalArgs {
 pub(crate) struct CompareArgs {
     /// A built-in scene or a scene file. Default: outdoor.
     pub(crate) scene: Option<String>,
-    /// The techniques, comma-separated, each `TECHNIQUE` or `lispsm:PARAMETER`.
+    /// The techniques, comma-separated, each `TECHNIQUE`, `lispsm:PARAMETER` or `optimal:refit`.
     #[arg(
         long,
         value_delimiter = ',',
@@ -187,12 +187,12 @@ pub(crate) struct ShadowArgs {
     /// A built-in scene (outdoor, dueling-frusta, cad-lattice, chess-spot, bunny) or a scene file
     /// (.toml). Default: outdoor.
     pub(crate) scene: Option<String>,
-    /// The technique: uniform, uniform_limited, psm, lispsm, logarithmic. Default: lispsm.
+    /// The technique: uniform, uniform_limited, psm, lispsm, logarithmic, optimal. Default: lispsm.
     #[arg(long)]
     pub(crate) technique: Option<String>,
     /// LiSPSM's parameter: lispsm (the paper's n_opt/sin γ, default), lispsm_dz, cad, cad_eq17,
     /// cad_sin2, gmnpr, glpr, minimax, uniform; or an engine's: filament, ogre, osg, authors2006,
-    /// osg_vdsm.
+    /// osg_vdsm. For optimal, the step: paper (default) or refit.
     #[arg(long = "param")]
     pub(crate) parameter: Option<String>,
     /// Shadow-map side in texels. Default: 1024.

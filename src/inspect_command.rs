@@ -80,14 +80,18 @@ pub(crate) fn run(args: &InspectArgs) -> Result<(), CliError> {
                 scene.name, resolved.technique
             ))
         };
-        if resolved.technique == Technique::Optimal {
+        if let Technique::Optimal(direction) = resolved.technique {
             let input = scene_input(scene, light, nearest, FocusPolicy::Scene).map_err(failed)?;
+            let options = OptimalOptions {
+                direction,
+                ..OptimalOptions::default()
+            };
             let (parts, light_reports): (Vec<_>, Vec<_>) = optimal::plan_partitions(
                 scene,
                 &input,
                 resolved.splits,
                 resolved.partitions.max(1),
-                &OptimalOptions::default(),
+                &options,
             )
             .map_err(failed)?
             .into_iter()

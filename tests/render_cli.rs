@@ -191,7 +191,7 @@ fn bad_input_exits_with_2_and_names_the_problem() {
                 "--param".into(),
                 "gmnpr".into(),
             ],
-            "applies to lispsm only",
+            "applies to lispsm and optimal only",
         ),
         (
             vec![

@@ -8,7 +8,7 @@ use std::fmt::Write as _;
 
 use serde_json::{Value, json};
 use shadowlab_plot::{Axis, Figure, LegendPosition, LineStyle, Panel, Series};
-use shadowlab_shadow::{Filter, Technique, WarpChoice};
+use shadowlab_shadow::{Filter, StepDirection, Technique, WarpChoice};
 
 use crate::aliasing::AliasingStats;
 use crate::error::AnalysisError;
@@ -39,6 +39,7 @@ pub fn technique_label(technique: Technique) -> String {
     match technique {
         Technique::Lispsm(choice) if choice == WarpChoice::PAPER => "lispsm".into(),
         Technique::Lispsm(choice) => format!("lispsm/{}", choice.key()),
+        Technique::Optimal(StepDirection::Refitted) => "optimal/refit".into(),
         other => other.key().into(),
     }
 }
@@ -312,7 +313,7 @@ fn chong_gortler<'a>(
             Some((
                 *r,
                 errors(Technique::UniformLimited, *r)?,
-                errors(Technique::Optimal, *r)?,
+                errors(Technique::Optimal(StepDirection::Paper), *r)?,
             ))
         })
         .collect();

@@ -88,7 +88,7 @@ pub fn curves(scene: &Scene, techniques: &[Technique]) -> Result<Vec<AxisCurve>,
     let directional = matches!(light, SceneLight::Directional { .. });
     let mut out = Vec::with_capacity(techniques.len());
     for &technique in techniques {
-        if technique == Technique::Optimal {
+        if matches!(technique, Technique::Optimal(_)) {
             // Planned from the scene's samples, not from a plan input: no V-fitted counterpart.
             continue;
         }
@@ -147,6 +147,6 @@ fn closed_form(technique: Technique, setup: &LightSetup, range: DepthRange, t: f
         // LiSPSM §4: the ideal parameterisation's constant error — ln(f/n) at 90°, ln(1 + 1/λ)
         // for the warp-axis extent it is fitted to at other angles (formulas.md §2.9).
         Technique::Logarithmic => Some((1.0 / setup.warp.as_ref()?.lambda).ln_1p()),
-        Technique::Psm | Technique::Optimal => None,
+        Technique::Psm | Technique::Optimal(_) => None,
     }
 }

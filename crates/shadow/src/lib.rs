@@ -51,4 +51,4 @@ pub use render::{
 };
 pub use setup::{LightSetup, PsmReport, ShadowMapping, WarpReport};
 pub use snap::snap_to_texels;
-pub use technique::{ProductionVariant, Technique, WarpChoice};
+pub use technique::{ProductionVariant, StepDirection, Technique, WarpChoice};

@@ -28,7 +28,7 @@ pub fn plan(input: &PlanInput, technique: Technique) -> Result<LightSetup, Shado
         Technique::UniformLimited => uniform_limited(input),
         Technique::Psm => psm::plan(input),
         Technique::Logarithmic => logarithmic::plan(input),
-        Technique::Optimal => Err(ShadowError::NotDefined {
+        Technique::Optimal(_) => Err(ShadowError::NotDefined {
             technique: "optimal",
             reason:
                 "the scene-optimized map needs the scene's geometry (a low-resolution eye pass \

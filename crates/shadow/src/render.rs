@@ -155,7 +155,7 @@ pub fn scene_input(
 
 /// Plans one light of `scene`: `partitions` z-partitions split by `splits` (one: the whole view),
 /// each with `technique`, PSM's near plane at `nearest_visible_depth`. [`Technique::Optimal`] is
-/// planned from the scene itself with the default [`OptimalOptions`]: a low-resolution eye pass,
+/// planned from the scene itself with the default [`OptimalOptions`] but its step direction: a low-resolution eye pass,
 /// then each partition optimized on its own samples ([`crate::optimal::plan_partitions`]).
 ///
 /// # Errors
@@ -169,17 +169,17 @@ pub fn plan_light(
     nearest_visible_depth: Option<f64>,
 ) -> Result<Vec<Partition>, ShadowError> {
     let input = scene_input(scene, light, nearest_visible_depth, FocusPolicy::Scene)?;
-    if technique == Technique::Optimal {
-        return Ok(optimal::plan_partitions(
-            scene,
-            &input,
-            splits,
-            partitions.max(1),
-            &OptimalOptions::default(),
-        )?
-        .into_iter()
-        .map(|(partition, _)| partition)
-        .collect());
+    if let Technique::Optimal(direction) = technique {
+        let options = OptimalOptions {
+            direction,
+            ..OptimalOptions::default()
+        };
+        return Ok(
+            optimal::plan_partitions(scene, &input, splits, partitions.max(1), &options)?
+                .into_iter()
+                .map(|(partition, _)| partition)
+                .collect(),
+        );
     }
     plan_partitions(&input, technique, splits, partitions.max(1))
 }

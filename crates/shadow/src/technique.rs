@@ -27,8 +27,32 @@ pub enum Technique {
     /// Chong and Gortler's scene-optimized shadow map (CG06 Algorithm 1): P chosen by gradient
     /// descent to minimise the texel footprint at the pixels near shadow boundaries of a
     /// low-resolution eye pass ([`crate::optimal`]). Needs the scene's geometry, so it is planned by
-    /// [`crate::plan_light`] or [`crate::optimal::plan`], not by [`crate::plan`].
-    Optimal,
+    /// [`crate::plan_light`] or [`crate::optimal::plan`], not by [`crate::plan`]. The step's
+    /// direction is the paper's or the refitted objective's ([`StepDirection`]).
+    Optimal(StepDirection),
+}
+
+/// Which way the scene-optimized map's descent turns `p̃_4` (CG06 Algorithm 1 step 4).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum StepDirection {
+    /// Against Appendix A's gradient of h with the affine rows held fixed — the paper's step.
+    #[default]
+    Paper,
+    /// Against the gradient of the objective the line search actually compares, h with the
+    /// affine rows refitted to each axis, by central differences on the unit sphere
+    /// ([`crate::optimal`]): shadowlab's variant, measured against the paper's.
+    Refitted,
+}
+
+impl StepDirection {
+    /// Its key: `paper` or `refit`.
+    #[must_use]
+    pub fn key(self) -> &'static str {
+        match self {
+            Self::Paper => "paper",
+            Self::Refitted => "refit",
+        }
+    }
 }
 
 /// How LiSPSM's `n` (or λ = n/d) is chosen.
@@ -132,12 +156,13 @@ impl Technique {
             Self::Psm => "psm",
             Self::Lispsm(_) => "lispsm",
             Self::Logarithmic => "logarithmic",
-            Self::Optimal => "optimal",
+            Self::Optimal(_) => "optimal",
         }
     }
 
-    /// The technique named `key`, with LiSPSM's parameter named by `parameter` (default: the
-    /// paper's). `Err` says which name is unknown and lists the known ones.
+    /// The technique named `key`, with LiSPSM's parameter, or the scene-optimized map's step
+    /// direction (`paper` or `refit`), named by `parameter` (default: the paper's). `Err` says
+    /// which name is unknown and lists the known ones.
     ///
     /// # Errors
     /// An unknown technique or parameter, or a parameter given to a technique without one.
@@ -148,7 +173,7 @@ impl Technique {
             "psm" => Self::Psm,
             "lispsm" => Self::Lispsm(WarpChoice::PAPER),
             "logarithmic" => Self::Logarithmic,
-            "optimal" => Self::Optimal,
+            "optimal" => Self::Optimal(StepDirection::Paper),
             _ => {
                 return Err(format!(
                     "unknown technique {key:?}; known: {}",
@@ -168,8 +193,13 @@ impl Technique {
                     )
                 })
             }
+            (Self::Optimal(_), Some(p)) => [StepDirection::Paper, StepDirection::Refitted]
+                .into_iter()
+                .find(|d| d.key() == p)
+                .map(Self::Optimal)
+                .ok_or_else(|| format!("unknown step {p:?} for optimal; known: paper, refit")),
             (_, Some(p)) => Err(format!(
-                "the parameter {p:?} applies to lispsm only, not to {key}"
+                "the parameter {p:?} applies to lispsm and optimal only, not to {key}"
             )),
         }
     }
@@ -179,6 +209,7 @@ impl fmt::Display for Technique {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             Self::Lispsm(choice) => write!(f, "lispsm ({})", choice.key()),
+            Self::Optimal(StepDirection::Refitted) => f.write_str("optimal (refit)"),
             other => f.write_str(other.key()),
         }
     }

@@ -4,7 +4,7 @@
 
 use shadowlab_analysis::view_axis::{DEPTH_SAMPLES, curves};
 use shadowlab_scene::{SceneLight, builtin_scene};
-use shadowlab_shadow::{Technique, WarpChoice};
+use shadowlab_shadow::{StepDirection, Technique, WarpChoice};
 
 /// The agreement of issue 5's proof.
 const AGREEMENT: f64 = 1e-6;
@@ -50,7 +50,11 @@ fn at_90_degrees_the_measurement_lies_on_the_closed_form() {
 #[test]
 fn the_optimized_map_has_no_view_axis_curve_and_a_scene_without_light_is_an_error() {
     let mut scene = builtin_scene("outdoor").unwrap();
-    assert!(curves(&scene, &[Technique::Optimal]).unwrap().is_empty());
+    assert!(
+        curves(&scene, &[Technique::Optimal(StepDirection::Paper)])
+            .unwrap()
+            .is_empty()
+    );
     scene.lights.clear();
     assert!(curves(&scene, &[Technique::Uniform]).is_err());
 }

@@ -13,7 +13,7 @@ use std::path::PathBuf;
 use shadowlab_raster::DepthFormat;
 use shadowlab_scene::{BUILTIN_SCENES, builtin_scene};
 use shadowlab_shadow::{
-    Bias, Filter, FrameOptions, Lookup, ShadowError, Splits, Technique, render_frame,
+    Bias, Filter, FrameOptions, Lookup, ShadowError, Splits, StepDirection, Technique, render_frame,
 };
 
 /// Eye image and shadow-map sizes of the golden frames.
@@ -38,7 +38,7 @@ fn techniques() -> [Technique; 6] {
         Technique::Psm,
         Technique::Lispsm(shadowlab_shadow::WarpChoice::PAPER),
         Technique::Logarithmic,
-        Technique::Optimal,
+        Technique::Optimal(StepDirection::Paper),
     ]
 }
 
