@@ -33,11 +33,13 @@ pub(crate) trait Sink {
 /// Eight lanes: one row of a block.
 pub(crate) type Lanes<T> = [T; BLOCK];
 
-/// Rasterizes everything binned to one tile into a sink. Implemented by the pipeline; called by
-/// the targets, one tile per call, so that every sink type gets its own compiled inner loop.
+/// Rasterizes everything binned to a few consecutive tiles, each into its own sink. Implemented by
+/// the pipeline; called by the targets, one group of tiles per call, so that every sink type gets
+/// its own compiled inner loop.
 pub(crate) trait TileKernel: Sync {
-    /// Draws tile `tile`; returns the number of fragments that passed.
-    fn run<S: Sink>(&self, tile: usize, sink: &mut S) -> u64;
+    /// Draws tiles `first..first + sinks.len()`, tile `first + k` into `sinks[k]`; returns the
+    /// number of fragments that passed.
+    fn run<S: Sink>(&self, first: usize, sinks: &mut [S]) -> u64;
 }
 
 /// The pixel rectangle of a tile: first column and row, and size.

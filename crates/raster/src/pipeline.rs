@@ -7,8 +7,9 @@
 //!    cross the near or far plane or the guard band, classify (degenerate, culled, empty), and list
 //!    each triangle under every tile its pixel box touches — sorted by tile within the chunk, in
 //!    submission order.
-//! 3. **Tiles** (parallel over tiles): each tile walks the chunks in order and their lists for it, so
-//!    it sees its triangles in submission order, and rasterizes them into its own pixels.
+//! 3. **Tiles** (parallel over groups of a few tiles): each tile walks the chunks in order and their
+//!    lists for it, so it sees its triangles in submission order, and rasterizes them into its own
+//!    pixels; the tiles of a group take each chunk in turn, so they share its data in cache.
 //!
 //! No pixel is written by two threads and every tile's triangle order is the submission order, so
 //! the output is bit-identical for any number of threads and any run.
@@ -176,8 +177,8 @@ struct EarlyFragment {
 /// refilled by every draw, so a sequence of draws allocates its buffers once.
 #[derive(Debug, Default)]
 struct ChunkBins {
-    /// Entries grouped by tile: a kind (the two top bits) and an index.
-    entries: Vec<u32>,
+    /// Entries grouped by tile.
+    entries: Vec<Entry>,
     /// `entries[starts[t]..starts[t + 1]]` are tile t's.
     starts: Vec<u32>,
     /// The clipped pieces this chunk made.
@@ -188,9 +189,30 @@ struct ChunkBins {
     /// The first bad input of the chunk, if any.
     error: Option<RasterError>,
     /// Scratch: `(tile, entry)` pairs in submission order, before sorting.
-    listed: Vec<(u32, u32)>,
+    listed: Vec<(u32, Entry)>,
     /// Scratch: the next free slot of each tile while sorting.
     cursor: Vec<u32>,
+}
+
+/// What a tile draws: a kind (the two top bits of `entry`) and an index; for a mesh triangle also
+/// its index triple, copied while binning (which reads it anyway) so that the tile pass need not
+/// fetch it from the mesh, where a tile's triangles lie scattered: that fetch missed the cache often
+/// enough to take 9 % of the dragon light pass's tile time.
+#[derive(Clone, Copy, Debug, Default)]
+struct Entry {
+    entry: u32,
+    /// The mesh triangle's vertex indices; zero for other kinds.
+    corners: [u32; 3],
+}
+
+impl Entry {
+    /// An entry of a kind other than [`TRIANGLE`].
+    fn other(entry: u32) -> Self {
+        Self {
+            entry,
+            corners: [0; 3],
+        }
+    }
 }
 
 /// What binning needs of the draw, the same for every chunk.
@@ -209,7 +231,6 @@ struct Binned<'a> {
     size: TargetSize,
     cull: CullMode,
     window: &'a [WindowVertex],
-    triangles: &'a [[u32; 3]],
     chunks: &'a [ChunkBins],
 }
 
@@ -306,7 +327,7 @@ impl Rasterizer {
                 y0: y0 as u32,
                 f: &mut f,
             };
-            fragments += binned.run(tile, &mut sink);
+            fragments += binned.run(tile, std::slice::from_mut(&mut sink));
         }
         Ok(binned.finish(fragments))
     }
@@ -373,7 +394,6 @@ impl Rasterizer {
             size,
             cull: self.options.cull,
             window: &self.window,
-            triangles: mesh.triangles,
             chunks,
         })
     }
@@ -473,10 +493,14 @@ impl ChunkBins {
                                     reason = "a chunk's fragments are far fewer than 2^30"
                                 )]
                                 let run = FRAGMENTS | first as u32;
-                                listed.push((tile, run));
+                                listed.push((tile, Entry::other(run)));
                             }
                         } else {
-                            list_tiles(&bounds, TRIANGLE | entry, size, listed);
+                            let entry = Entry {
+                                entry: TRIANGLE | entry,
+                                corners: *t,
+                            };
+                            list_tiles(&bounds, entry, size, listed);
                         }
                     }
                 }
@@ -500,7 +524,7 @@ impl ChunkBins {
                             reason = "pieces per chunk < 2^30"
                         )]
                         let piece_entry = CLIPPED | p as u32;
-                        list_tiles(&bounds, piece_entry, size, listed);
+                        list_tiles(&bounds, Entry::other(piece_entry), size, listed);
                     }
                 }
             }
@@ -515,7 +539,7 @@ impl ChunkBins {
             starts[t + 1] += starts[t];
         }
         cursor.extend_from_slice(starts);
-        entries.resize(listed.len(), 0);
+        entries.resize(listed.len(), Entry::default());
         for &(tile, entry) in listed.iter() {
             let slot = &mut cursor[tile as usize];
             entries[*slot as usize] = entry;
@@ -575,9 +599,9 @@ fn find_early_fragments(
 /// Lists `entry` under every tile the pixel box touches.
 fn list_tiles(
     b: &crate::triangle::PixelBox,
-    entry: u32,
+    entry: Entry,
     size: TargetSize,
-    out: &mut Vec<(u32, u32)>,
+    out: &mut Vec<(u32, Entry)>,
 ) {
     let tiles_x = size.tiles_x();
     for ty in b.min_j >> TILE_SHIFT..=b.max_j >> TILE_SHIFT {
@@ -594,44 +618,69 @@ fn list_tiles(
 }
 
 impl TileKernel for Binned<'_> {
-    fn run<S: Sink>(&self, tile: usize, sink: &mut S) -> u64 {
-        let (x0, y0, width, height) = self.size.tile_rect(tile);
-        let rect = TileRect {
-            x0,
-            y0,
-            width,
-            height,
-        };
-        let (w, h) = (i64::from(self.size.width()), i64::from(self.size.height()));
+    /// Draws a group of tiles chunk by chunk: all of a chunk's entries for the group's tiles, then
+    /// the next chunk's. Each tile still sees its triangles in submission order, and the group's
+    /// tiles share the window vertices of a chunk's triangles (a patch of the mesh) while they are
+    /// in cache, where tile after tile would fetch them again (measured with bin entries carrying
+    /// their index triples: 4 to 5 % off the dragon's passes on one thread, no change on two).
+    fn run<S: Sink>(&self, first: usize, sinks: &mut [S]) -> u64 {
+        let rects: Vec<TileRect> = (first..first + sinks.len())
+            .map(|tile| {
+                let (x0, y0, width, height) = self.size.tile_rect(tile);
+                TileRect {
+                    x0,
+                    y0,
+                    width,
+                    height,
+                }
+            })
+            .collect();
         let mut passed = 0;
         for chunk in self.chunks {
-            let range = chunk.starts[tile] as usize..chunk.starts[tile + 1] as usize;
-            for &entry in &chunk.entries[range] {
-                let index = (entry & INDEX_MASK) as usize;
-                let (vertices, triangle) = match entry & !INDEX_MASK {
-                    TRIANGLE => {
-                        let t = self.triangles[index];
-                        (t.map(|v| self.window[v as usize]), entry)
-                    }
-                    FRAGMENTS => {
-                        for fragment in &chunk.fragments[index..] {
-                            let pixel = usize::from(fragment.pixel);
-                            passed += sink.fragment(pixel, fragment.z, fragment.triangle);
-                            if fragment.last {
-                                break;
-                            }
+            for (k, sink) in sinks.iter_mut().enumerate() {
+                let tile = first + k;
+                let range = chunk.starts[tile] as usize..chunk.starts[tile + 1] as usize;
+                passed += self.draw_entries(chunk, &chunk.entries[range], &rects[k], sink);
+            }
+        }
+        passed
+    }
+}
+
+impl Binned<'_> {
+    /// Draws some of a chunk's entries for one tile into its sink.
+    #[inline(always)]
+    fn draw_entries<S: Sink>(
+        &self,
+        chunk: &ChunkBins,
+        entries: &[Entry],
+        rect: &TileRect,
+        sink: &mut S,
+    ) -> u64 {
+        let (w, h) = (i64::from(self.size.width()), i64::from(self.size.height()));
+        let mut passed = 0;
+        for &Entry { entry, corners } in entries {
+            let index = (entry & INDEX_MASK) as usize;
+            let (vertices, triangle) = match entry & !INDEX_MASK {
+                TRIANGLE => (corners.map(|v| self.window[v as usize]), entry),
+                FRAGMENTS => {
+                    for fragment in &chunk.fragments[index..] {
+                        let pixel = usize::from(fragment.pixel);
+                        passed += sink.fragment(pixel, fragment.z, fragment.triangle);
+                        if fragment.last {
+                            break;
                         }
-                        continue;
                     }
-                    _ => {
-                        let piece = &chunk.pieces[index];
-                        (piece.vertices, piece.triangle)
-                    }
-                };
-                if let Verdict::Draw(bounds, area) = classify(&vertices, self.cull, w, h) {
-                    let setup = Setup::new(&vertices, area);
-                    passed += rasterize(&setup, &bounds, &rect, triangle, sink);
+                    continue;
                 }
+                _ => {
+                    let piece = &chunk.pieces[index];
+                    (piece.vertices, piece.triangle)
+                }
+            };
+            if let Verdict::Draw(bounds, area) = classify(&vertices, self.cull, w, h) {
+                let setup = Setup::new(&vertices, area);
+                passed += rasterize(&setup, &bounds, rect, triangle, sink);
             }
         }
         passed

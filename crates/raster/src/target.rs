@@ -17,6 +17,10 @@ pub(crate) const TILE_STRIDE: usize = TILE_SIZE + 8;
 /// Stored values per tile.
 pub(crate) const TILE_PIXELS: usize = TILE_STRIDE * TILE_SIZE;
 
+/// Consecutive tiles (in storage order: along a row of tiles) drawn by one parallel job, chunk
+/// by chunk (see [`TileKernel::run`]).
+pub(crate) const TILE_GROUP: usize = 4;
+
 /// Tiles cleared per parallel job.
 const CLEAR_TILES_PER_JOB: usize = 64;
 
@@ -155,8 +159,8 @@ impl DepthTarget {
 }
 
 impl DepthTarget {
-    /// Runs `kernel` on every tile in parallel with a sink writing into that tile only; returns the
-    /// number of fragments that passed.
+    /// Runs `kernel` on every group of [`TILE_GROUP`] tiles in parallel, with a sink per tile
+    /// writing into that tile only; returns the number of fragments that passed.
     pub(crate) fn draw_tiles<K: DepthKey, R: TileKernel>(
         &mut self,
         compare: DepthCompare,
@@ -164,28 +168,33 @@ impl DepthTarget {
     ) -> u64 {
         use rayon::prelude::*;
         self.keys
-            .par_chunks_mut(TILE_PIXELS)
-            // One tile per job: tiles differ wildly in cost (most are empty), and rayon's adaptive
+            .par_chunks_mut(TILE_PIXELS * TILE_GROUP)
+            // One group per job: tiles differ wildly in cost (most are empty), and rayon's adaptive
             // splitting alone leaves one thread with most of the work when the caller is itself a
             // pool thread (its job never counts as stolen, so it is split less).
             .with_max_len(1)
             .enumerate()
-            .map(|(t, keys)| {
+            .map(|(g, keys)| {
+                let tiles = keys.chunks_mut(TILE_PIXELS);
                 // The common test gets its own loop, without a per-fragment branch.
                 if compare == DepthCompare::Less {
-                    let mut sink = DepthSink::<K, Less> {
-                        keys,
-                        compare: Less,
-                        key: std::marker::PhantomData,
-                    };
-                    kernel.run(t, &mut sink)
+                    let mut sinks: Vec<_> = tiles
+                        .map(|keys| DepthSink::<K, Less> {
+                            keys,
+                            compare: Less,
+                            key: std::marker::PhantomData,
+                        })
+                        .collect();
+                    kernel.run(g * TILE_GROUP, &mut sinks)
                 } else {
-                    let mut sink = DepthSink::<K, DepthCompare> {
-                        keys,
-                        compare,
-                        key: std::marker::PhantomData,
-                    };
-                    kernel.run(t, &mut sink)
+                    let mut sinks: Vec<_> = tiles
+                        .map(|keys| DepthSink::<K, DepthCompare> {
+                            keys,
+                            compare,
+                            key: std::marker::PhantomData,
+                        })
+                        .collect();
+                    kernel.run(g * TILE_GROUP, &mut sinks)
                 }
             })
             .sum()
@@ -258,22 +267,26 @@ impl DepthPairTarget {
 }
 
 impl DepthPairTarget {
-    /// Runs `kernel` on every tile in parallel with a sink writing into that tile only; returns the
-    /// number of fragments that passed.
+    /// Runs `kernel` on every group of [`TILE_GROUP`] tiles in parallel, with a sink per tile
+    /// writing into that tile only; returns the number of fragments that passed.
     pub(crate) fn draw_tiles<K: DepthKey, R: TileKernel>(&mut self, kernel: &R) -> u64 {
         use rayon::prelude::*;
         self.nearest
-            .par_chunks_mut(TILE_PIXELS)
-            .zip(self.second.par_chunks_mut(TILE_PIXELS))
+            .par_chunks_mut(TILE_PIXELS * TILE_GROUP)
+            .zip(self.second.par_chunks_mut(TILE_PIXELS * TILE_GROUP))
             .with_max_len(1)
             .enumerate()
-            .map(|(t, (nearest, second))| {
-                let mut sink = PairSink::<K> {
-                    nearest,
-                    second,
-                    key: std::marker::PhantomData,
-                };
-                kernel.run(t, &mut sink)
+            .map(|(g, (nearest, second))| {
+                let mut sinks: Vec<_> = nearest
+                    .chunks_mut(TILE_PIXELS)
+                    .zip(second.chunks_mut(TILE_PIXELS))
+                    .map(|(nearest, second)| PairSink::<K> {
+                        nearest,
+                        second,
+                        key: std::marker::PhantomData,
+                    })
+                    .collect();
+                kernel.run(g * TILE_GROUP, &mut sinks)
             })
             .sum()
     }
@@ -339,8 +352,8 @@ impl EyeTarget {
 }
 
 impl EyeTarget {
-    /// Runs `kernel` on every tile in parallel with a sink writing into that tile only; returns the
-    /// number of fragments that passed.
+    /// Runs `kernel` on every group of [`TILE_GROUP`] tiles in parallel, with a sink per tile
+    /// writing into that tile only; returns the number of fragments that passed.
     pub(crate) fn draw_tiles<K: DepthKey, R: TileKernel>(
         &mut self,
         compare: DepthCompare,
@@ -348,27 +361,34 @@ impl EyeTarget {
     ) -> u64 {
         use rayon::prelude::*;
         self.keys
-            .par_chunks_mut(TILE_PIXELS)
-            .zip(self.triangles.par_chunks_mut(TILE_PIXELS))
+            .par_chunks_mut(TILE_PIXELS * TILE_GROUP)
+            .zip(self.triangles.par_chunks_mut(TILE_PIXELS * TILE_GROUP))
             .with_max_len(1)
             .enumerate()
-            .map(|(t, (keys, triangles))| {
+            .map(|(g, (keys, triangles))| {
+                let tiles = keys
+                    .chunks_mut(TILE_PIXELS)
+                    .zip(triangles.chunks_mut(TILE_PIXELS));
                 if compare == DepthCompare::Less {
-                    let mut sink = EyeSink::<K, Less> {
-                        keys,
-                        triangles,
-                        compare: Less,
-                        key: std::marker::PhantomData,
-                    };
-                    kernel.run(t, &mut sink)
+                    let mut sinks: Vec<_> = tiles
+                        .map(|(keys, triangles)| EyeSink::<K, Less> {
+                            keys,
+                            triangles,
+                            compare: Less,
+                            key: std::marker::PhantomData,
+                        })
+                        .collect();
+                    kernel.run(g * TILE_GROUP, &mut sinks)
                 } else {
-                    let mut sink = EyeSink::<K, DepthCompare> {
-                        keys,
-                        triangles,
-                        compare,
-                        key: std::marker::PhantomData,
-                    };
-                    kernel.run(t, &mut sink)
+                    let mut sinks: Vec<_> = tiles
+                        .map(|(keys, triangles)| EyeSink::<K, DepthCompare> {
+                            keys,
+                            triangles,
+                            compare,
+                            key: std::marker::PhantomData,
+                        })
+                        .collect();
+                    kernel.run(g * TILE_GROUP, &mut sinks)
                 }
             })
             .sum()
