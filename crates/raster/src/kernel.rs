@@ -16,7 +16,8 @@ use wide::i32x8;
 
 use crate::fixed::SUBPIXEL_BITS;
 use crate::target::TILE_STRIDE;
-use crate::triangle::{DepthPlane, Edge, PixelBox, Setup};
+use crate::triangle::{DepthPlane, Edge, PixelBox, edges};
+use crate::vertex::WindowVertex;
 
 /// Receives the fragments of one tile, eight pixels of a row at a time.
 pub(crate) trait Sink {
@@ -148,11 +149,14 @@ pub(crate) fn for_each_in_mask(
     }
 }
 
-/// Sends the fragments of a set-up triangle that fall in `tile` (within the triangle's pixel box) to
-/// `sink`, row by row within 8 × 8 blocks. Returns the number that passed.
+/// Sends the fragments of a counter-clockwise triangle (with doubled area `area`) that fall in
+/// `tile` (within the triangle's pixel box) to `sink`, row by row within 8 × 8 blocks. Returns the
+/// number that passed. The depth plane (a division) is set up only once a small box is known to
+/// cover some centre, as many of the tiny triangles of dense meshes do not.
 #[inline]
 pub(crate) fn rasterize<S: Sink>(
-    setup: &Setup,
+    oriented: &[WindowVertex; 3],
+    area: i64,
     bounds: &PixelBox,
     tile: &TileRect,
     triangle: u32,
@@ -165,11 +169,15 @@ pub(crate) fn rasterize<S: Sink>(
     if i0 > i1 || j0 > j1 {
         return 0;
     }
-    let edges = setup.edges;
+    let edges = edges(oriented);
     if (i1 - i0 + 1) * (j1 - j0 + 1) <= SMALL {
         let mut passed = 0;
         let covered = small_box_coverage(&edges, i0..=i1, j0..=j1);
-        for_each_in_mask(covered, &setup.depth, i0..=i1, j0, |i, j, z| {
+        if covered == 0 {
+            return 0;
+        }
+        let depth = DepthPlane::new(oriented, area);
+        for_each_in_mask(covered, &depth, i0..=i1, j0, |i, j, z| {
             #[expect(
                 clippy::cast_sign_loss,
                 clippy::cast_possible_truncation,
@@ -180,6 +188,7 @@ pub(crate) fn rasterize<S: Sink>(
         });
         return passed;
     }
+    let depth = DepthPlane::new(oriented, area);
     // Per edge, the change of `E >> 8` from the block's first column to each lane's, and per row.
     let lanes = edges.map(|edge| COLUMNS * i32x8::splat(step(edge.step_i)));
     let row_steps = edges.map(|edge| i32x8::splat(step(edge.step_j)));
@@ -208,7 +217,7 @@ pub(crate) fn rasterize<S: Sink>(
             let mut values =
                 [0, 1, 2].map(|e| i32x8::splat(corner(edges[e].at(bi, bj))) + lanes[e]);
             // The column part of the depth, once per block; the row part once per row.
-            let column_z = setup.depth.column_depths(bi);
+            let column_z = depth.column_depths(bi);
             #[expect(
                 clippy::cast_sign_loss,
                 clippy::cast_possible_truncation,
@@ -217,7 +226,7 @@ pub(crate) fn rasterize<S: Sink>(
             let mut start = ((bj - tile.y0) as usize) * TILE_STRIDE + (bi - tile.x0) as usize;
             for r in 0..rows {
                 let uncovered = row_uncovered(&values, outside);
-                let row_z = setup.depth.row_depth(bj + r);
+                let row_z = depth.row_depth(bj + r);
                 let mut z = [0.0; BLOCK];
                 for k in 0..BLOCK {
                     z[k] = row_z + column_z[k];

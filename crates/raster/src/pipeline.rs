@@ -25,7 +25,7 @@ use crate::kernel::{
     rasterize, small_box_coverage,
 };
 use crate::target::{DepthPairTarget, DepthTarget, EyeTarget, TILE_SHIFT, TILE_STRIDE, TargetSize};
-use crate::triangle::{CullMode, DepthPlane, Setup, Verdict, classify, counter_clockwise, edges};
+use crate::triangle::{CullMode, DepthPlane, Verdict, classify, counter_clockwise, edges};
 use crate::vertex::{Viewport, WindowVertex, code, transform};
 
 /// Vertices per parallel work item of the vertex stage: small enough that the bunny's 34 835
@@ -679,8 +679,8 @@ impl Binned<'_> {
                 }
             };
             if let Verdict::Draw(bounds, area) = classify(&vertices, self.cull, w, h) {
-                let setup = Setup::new(&vertices, area);
-                passed += rasterize(&setup, &bounds, rect, triangle, sink);
+                let oriented = counter_clockwise(&vertices, area);
+                passed += rasterize(&oriented, area, &bounds, rect, triangle, sink);
             }
         }
         passed

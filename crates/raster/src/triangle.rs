@@ -37,7 +37,7 @@ pub(crate) enum Verdict {
     /// Its bounding box holds no pixel centre of the target.
     Empty,
     /// To be rasterized over the given pixel bounding box (inclusive); with twice its signed area in
-    /// grid units², which [`Setup::new`] takes instead of computing it again.
+    /// grid units², which the depth plane takes instead of computing it again.
     Draw(PixelBox, i64),
 }
 
@@ -115,25 +115,6 @@ impl Edge {
     #[inline]
     pub(crate) fn at(&self, i: i64, j: i64) -> i64 {
         self.step_i * i + self.step_j * j + self.offset
-    }
-}
-
-/// A triangle ready for its pixels: counter-clockwise edges and the depth plane.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct Setup {
-    pub(crate) edges: [Edge; 3],
-    pub(crate) depth: DepthPlane,
-}
-
-impl Setup {
-    /// The setup of a triangle [`classify`] accepted, given the doubled area it found (non-zero).
-    #[inline]
-    pub(crate) fn new(v: &[WindowVertex; 3], area: i64) -> Self {
-        let oriented = counter_clockwise(v, area);
-        Self {
-            edges: edges(&oriented),
-            depth: DepthPlane::new(&oriented, area),
-        }
     }
 }
 
