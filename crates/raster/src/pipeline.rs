@@ -20,12 +20,9 @@ use rayon::prelude::*;
 use crate::clip::{ClippedTriangle, clip_triangle};
 use crate::depth::{DepthCompare, DepthFormat, F32Key, ReversedF32Key, Unorm16Key, Unorm24Key};
 use crate::error::RasterError;
-use crate::kernel::{
-    BLOCK, BLOCK_I64, Lanes, MAX_SMALL_BOX, Sink, TileKernel, TileRect, for_each_in_mask,
-    rasterize, small_box_coverage,
-};
+use crate::kernel::{BLOCK, Lanes, Sink, TileKernel, TileRect, for_each_in_mask, rasterize};
 use crate::target::{DepthPairTarget, DepthTarget, EyeTarget, TILE_SHIFT, TILE_STRIDE, TargetSize};
-use crate::triangle::{CullMode, DepthPlane, Verdict, classify, counter_clockwise, edges};
+use crate::triangle::{CullMode, DepthPlane, Edge, Verdict, classify, counter_clockwise, edges};
 use crate::vertex::{Viewport, WindowVertex, code, transform};
 
 /// Vertices per parallel work item of the vertex stage: small enough that the bunny's 34 835
@@ -51,8 +48,8 @@ const INDEX_MASK: u32 = (1 << KIND_SHIFT) - 1;
 /// takes 19% off it but adds 8% to the bunny's eye pass and 5% to the dragon's light pass — the
 /// early test's data-dependent branches outweigh the setup it saves once boxes cover a few pixels.
 const EARLY: i64 = 2;
-// A box of at most EARLY pixels is at most BLOCK wide, as `small_box_coverage` requires.
-const _: () = assert!(EARLY <= MAX_SMALL_BOX && EARLY <= BLOCK_I64);
+// A box of at most EARLY pixels is one or two pixels, as `early_coverage` requires.
+const _: () = assert!(EARLY <= 2);
 
 /// Triangles to draw: positions and counter-clockwise (for front faces) index triples.
 #[derive(Clone, Copy, Debug)]
@@ -574,7 +571,7 @@ fn find_early_fragments(
     out: &mut Vec<EarlyFragment>,
 ) {
     let oriented = counter_clockwise(vertices, area);
-    let covered = small_box_coverage(&edges(&oriented), b.min_i..=b.max_i, b.min_j..=b.max_j);
+    let covered = early_coverage(&edges(&oriented), b);
     if covered == 0 {
         return;
     }
@@ -594,6 +591,26 @@ fn find_early_fragments(
             last: false,
         });
     });
+}
+
+/// The covered centres of a box of one or two pixels, as [`crate::kernel::small_box_coverage`] gives them (bit 0
+/// for its first pixel, bit 1 for the second, right of or above it), by the exact edge functions in
+/// scalar arithmetic: for two points, lanes cost more than they save.
+#[inline(always)]
+fn early_coverage(edges: &[Edge; 3], b: &crate::triangle::PixelBox) -> u32 {
+    let first = edges.map(|e| e.at(b.min_i, b.min_j));
+    let wide = b.max_i > b.min_i;
+    let two = wide || b.max_j > b.min_j;
+    let second: [i64; 3] = std::array::from_fn(|k| {
+        first[k]
+            + if wide {
+                edges[k].step_i
+            } else {
+                edges[k].step_j
+            }
+    });
+    let inside = |v: [i64; 3]| (v[0] | v[1] | v[2]) >= 0;
+    u32::from(inside(first)) | (u32::from(two && inside(second)) << 1)
 }
 
 /// Lists `entry` under every tile the pixel box touches.
@@ -725,5 +742,57 @@ impl<F: FnMut(Fragment)> Sink for CallbackSink<'_, F> {
             triangle,
         });
         1
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::kernel::small_box_coverage;
+    use crate::triangle::PixelBox;
+
+    /// The scalar test of one- and two-pixel boxes agrees with the lane test, for edges of every
+    /// slope and boxes on and off the triangles.
+    #[test]
+    fn early_coverage_matches_the_small_box_test() {
+        let mut state = 0x9e37_79b9_7f4a_7c15_u64;
+        let mut next = move |range: i64| {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            #[expect(clippy::cast_possible_wrap, reason = "below 2^63")]
+            let v = (state % (2 * range.unsigned_abs() + 1)) as i64 - range;
+            v
+        };
+        let mut covered = 0;
+        for k in 0..50_000 {
+            let range = if k % 2 == 0 { 256 * 6 } else { 256 * 3000 };
+            #[expect(clippy::cast_possible_truncation, reason = "inside the guard band")]
+            let v: [WindowVertex; 3] = std::array::from_fn(|_| WindowVertex {
+                x: (256 * 10 + next(range)) as i32,
+                y: (256 * 10 + next(range)) as i32,
+                z: 0.5,
+            });
+            let area = (i64::from(v[1].x) - i64::from(v[0].x))
+                * (i64::from(v[2].y) - i64::from(v[0].y))
+                - (i64::from(v[2].x) - i64::from(v[0].x)) * (i64::from(v[1].y) - i64::from(v[0].y));
+            if area == 0 {
+                continue;
+            }
+            let e = edges(&counter_clockwise(&v, area));
+            let (i, j) = (10 + next(3), 10 + next(3));
+            for (w, h) in [(1, 1), (2, 1), (1, 2)] {
+                let b = PixelBox {
+                    min_i: i,
+                    max_i: i + w - 1,
+                    min_j: j,
+                    max_j: j + h - 1,
+                };
+                let lanes = small_box_coverage(&e, b.min_i..=b.max_i, b.min_j..=b.max_j);
+                assert_eq!(early_coverage(&e, &b), lanes, "{v:?} {b:?}");
+                covered += u32::from(lanes != 0);
+            }
+        }
+        assert!(covered > 1000, "{covered}");
     }
 }
