@@ -103,7 +103,9 @@ impl Edge {
     fn new(a: WindowVertex, b: WindowVertex) -> Self {
         let (ax, ay) = (i64::from(a.x), i64::from(a.y));
         let (dx, dy) = (i64::from(b.x) - ax, i64::from(b.y) - ay);
-        let included = dy < 0 || (dy == 0 && dx > 0);
+        // Bitwise, not short-circuit: the sign of dy is as good as random, and `||` compiled to
+        // a branch on it, which mispredicted often (see the commit introducing this line).
+        let included = (dy < 0) | ((dy == 0) & (dx > 0));
         Self {
             step_i: -dy * SUBPIXELS,
             step_j: dx * SUBPIXELS,
