@@ -615,7 +615,7 @@ fn descend_from(
     })
 }
 
-/// The angle of the central differences of [`refitted_gradient`], radians: far below the smallest
+/// The angle of the central differences of [`StepDirection::Refitted`], radians: far below the smallest
 /// step of the line search (3°) and far above rounding — h is smooth in `p̃_4` wherever the fitted
 /// rectangle keeps its orientation, and the differences are taken only where both sides fit.
 pub const REFIT_DIFFERENCE: f64 = 1e-4;
