@@ -25,13 +25,25 @@ pub const MAX_TARGET_SIZE: u32 = 16384;
 /// below `2^23` grid units in magnitude, so edge-function products stay far inside `i64`.
 pub const GUARD_BAND: u32 = 8192;
 
+/// [`SUBPIXELS`] as an f64.
+#[expect(clippy::cast_precision_loss, reason = "256 is exact")]
+pub(crate) const SUBPIXELS_F64: f64 = SUBPIXELS as f64;
+
 /// A window coordinate snapped to the grid; `|x| < 2^23` for coordinates inside the guard band.
 #[must_use]
 pub(crate) fn snap(window: f64) -> i32 {
-    let grid = (window * SUBPIXELS as f64).round_ties_even();
+    snapped((window * SUBPIXELS_F64).round_ties_even())
+}
+
+/// A window coordinate already scaled to grid units and rounded ([`snap`]'s last step), as an
+/// integer.
+#[must_use]
+#[inline(always)]
+pub(crate) fn snapped(grid: f64) -> i32 {
     debug_assert!(
         grid.abs() < f64::from(1u32 << 24),
-        "{window} outside the guard band"
+        "{} outside the guard band",
+        grid / SUBPIXELS_F64
     );
     #[expect(
         clippy::cast_possible_truncation,

@@ -23,7 +23,7 @@ use crate::error::RasterError;
 use crate::kernel::{BLOCK, Lanes, Sink, TileKernel, TileRect, for_each_in_mask, rasterize};
 use crate::target::{DepthPairTarget, DepthTarget, EyeTarget, TILE_SHIFT, TILE_STRIDE, TargetSize};
 use crate::triangle::{CullMode, DepthPlane, Edge, Verdict, classify, counter_clockwise, edges};
-use crate::vertex::{Viewport, WindowVertex, code, transform};
+use crate::vertex::{Viewport, WindowVertex, code, transform, transform_vertices};
 
 /// Vertices per parallel work item of the vertex stage: small enough that the bunny's 34 835
 /// vertices make 17 items, which two threads share evenly (with 8192 they made 5).
@@ -354,13 +354,7 @@ impl Rasterizer {
             .zip(self.codes.par_chunks_mut(VERTEX_CHUNK))
             .with_max_len(1)
             .for_each(|((positions, window), codes)| {
-                for ((p, w), c) in positions.iter().zip(window).zip(codes) {
-                    let clip = transform(m, *p);
-                    *c = viewport.clip_code(clip);
-                    if *c == 0 {
-                        *w = viewport.window_vertex(clip);
-                    }
-                }
+                transform_vertices(m, &viewport, positions, window, codes);
             });
         let context = BinContext {
             positions: mesh.positions,
