@@ -6,9 +6,10 @@ use indicatif::{ProgressBar, ProgressStyle};
 use shadowlab_analysis::report::{filter_label, technique_label};
 use shadowlab_analysis::{report, study, sweep, temporal};
 use shadowlab_raster::{DepthFormat, image_out};
+use shadowlab_scene::Scene;
 use shadowlab_shadow::{Bias, Filter, Splits};
 
-use crate::args::{AnalyzeArgs, SweepArgs, TemporalArgs};
+use crate::args::{AnalyzeArgs, StudyView, SweepArgs, TemporalArgs};
 use crate::error::CliError;
 use crate::output::{ensure_directory, print_line, write_atomic};
 use crate::shadow_settings::{load_scene_argument, parse_techniques};
@@ -119,11 +120,17 @@ pub(crate) fn analyze(args: &AnalyzeArgs) -> Result<(), CliError> {
     print_line(&out.join("report.md").display().to_string())
 }
 
-pub(crate) fn sweep_angle(args: &SweepArgs) -> Result<(), CliError> {
-    let mut scene = load_scene_argument(args.scene.as_deref())?;
-    if let Some((w, h)) = args.eye_size {
-        (scene.camera.width, scene.camera.height) = (w, h);
+/// The scene of `sweep-angle` and `temporal`, at the eye image size asked for.
+fn study_scene(scene: Option<&str>, view: &StudyView) -> Result<Scene, CliError> {
+    let mut scene = load_scene_argument(scene)?;
+    if let Some((width, height)) = view.eye_size {
+        (scene.camera.width, scene.camera.height) = (width, height);
     }
+    Ok(scene)
+}
+
+pub(crate) fn sweep_angle(args: &SweepArgs) -> Result<(), CliError> {
+    let scene = study_scene(args.scene.as_deref(), &args.view)?;
     let techniques = parse_techniques(&args.techniques, "--techniques")?;
     let side = if args.behind {
         sweep::Side::Behind
@@ -137,7 +144,7 @@ pub(crate) fn sweep_angle(args: &SweepArgs) -> Result<(), CliError> {
         &techniques,
         &angles,
         side,
-        args.resolution,
+        args.view.resolution,
         |done, total| {
             bar.set_length(total as u64);
             bar.set_position(done as u64);
@@ -159,17 +166,14 @@ pub(crate) fn sweep_angle(args: &SweepArgs) -> Result<(), CliError> {
 }
 
 pub(crate) fn temporal(args: &TemporalArgs) -> Result<(), CliError> {
-    let mut scene = load_scene_argument(args.scene.as_deref())?;
-    if let Some((w, h)) = args.eye_size {
-        (scene.camera.width, scene.camera.height) = (w, h);
-    }
+    let scene = study_scene(args.scene.as_deref(), &args.view)?;
     let techniques = parse_techniques(&args.techniques, "--techniques")?;
     let bar = progress_bar("temporal");
     let result = temporal::temporal(
         &scene,
         &techniques,
         args.frames as usize,
-        args.resolution,
+        args.view.resolution,
         |done, total| {
             bar.set_length(total as u64);
             bar.set_position(done as u64);

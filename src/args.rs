@@ -82,6 +82,17 @@ pub(crate) struct AnalyzeArgs {
     pub(crate) out: Option<PathBuf>,
 }
 
+/// The map size and eye image of `sweep-angle` and `temporal`.
+#[derive(Debug, Args)]
+pub(crate) struct StudyView {
+    /// Shadow-map side.
+    #[arg(long, default_value_t = 1024, value_parser = clap::value_parser!(u32).range(1..=16384))]
+    pub(crate) resolution: u32,
+    /// Eye image size, WIDTHxHEIGHT (default: the scene's).
+    #[arg(long, value_parser = parse_size)]
+    pub(crate) eye_size: Option<(u32, u32)>,
+}
+
 /// Arguments of `shadowlab sweep-angle`.
 #[derive(Debug, Args)]
 pub(crate) struct SweepArgs {
@@ -94,12 +105,8 @@ pub(crate) struct SweepArgs {
         default_value = "uniform,psm,lispsm,lispsm:minimax,lispsm:filament,lispsm:ogre,lispsm:osg,lispsm:osg_vdsm,optimal"
     )]
     pub(crate) techniques: Vec<String>,
-    /// Shadow-map side.
-    #[arg(long, default_value_t = 1024, value_parser = clap::value_parser!(u32).range(1..=16384))]
-    pub(crate) resolution: u32,
-    /// Eye image size, WIDTHxHEIGHT (default: the scene's).
-    #[arg(long, value_parser = parse_size)]
-    pub(crate) eye_size: Option<(u32, u32)>,
+    #[command(flatten)]
+    pub(crate) view: StudyView,
     /// Let the light come from behind the viewer as γ → 0 (default: from in front, the dueling
     /// frusta).
     #[arg(long)]
@@ -124,12 +131,8 @@ pub(crate) struct TemporalArgs {
         default_value = "uniform,uniform_limited,psm,lispsm,optimal"
     )]
     pub(crate) techniques: Vec<String>,
-    /// Shadow-map side.
-    #[arg(long, default_value_t = 1024, value_parser = clap::value_parser!(u32).range(1..=16384))]
-    pub(crate) resolution: u32,
-    /// Eye image size, WIDTHxHEIGHT (default: the scene's).
-    #[arg(long, value_parser = parse_size)]
-    pub(crate) eye_size: Option<(u32, u32)>,
+    #[command(flatten)]
+    pub(crate) view: StudyView,
     /// Directory to write into. Default: out/temporal/SCENE.
     #[arg(long)]
     pub(crate) out: Option<PathBuf>,
