@@ -25,9 +25,8 @@
 use glam::{DMat4, DVec3};
 
 use crate::error::ShadowError;
-use crate::frame::LightFrame;
 use crate::input::PlanInput;
-use crate::plan::{focus_points, view_model};
+use crate::plan::{focus_in_light_space, view_model};
 use crate::setup::{LightSetup, ShadowMapping, WarpReport};
 use crate::technique::Technique;
 use crate::warp::Extents;
@@ -109,11 +108,7 @@ impl LogarithmicMap {
 /// [`crate::plan`] otherwise.
 pub(crate) fn plan(input: &PlanInput) -> Result<LightSetup, ShadowError> {
     let technique = Technique::Logarithmic;
-    let frame = LightFrame::new(&input.eye, &input.light, technique.key())?;
-    let world_points = focus_points(input)?;
-    let points = frame
-        .light_points(&world_points)
-        .ok_or(ShadowError::LightInsideFocusBody)?;
+    let (frame, world_points, points) = focus_in_light_space(input, technique)?;
     let (_, half_fov) = view_model(input)?;
     let extents = Extents::of(&points);
     let depth = extents.max.z - extents.min.z;

@@ -57,6 +57,20 @@ pub(crate) fn focus_points(input: &PlanInput) -> Result<Vec<DVec3>, ShadowError>
     }
 }
 
+/// `input`'s light frame for `technique`, the vertices of its focus body B (world) and the same
+/// vertices in light space: where every light-space technique starts.
+pub(crate) fn focus_in_light_space(
+    input: &PlanInput,
+    technique: Technique,
+) -> Result<(LightFrame, Vec<DVec3>, Vec<DVec3>), ShadowError> {
+    let frame = LightFrame::new(&input.eye, &input.light, technique.key())?;
+    let world_points = focus_points(input)?;
+    let points = frame
+        .light_points(&world_points)
+        .ok_or(ShadowError::LightInsideFocusBody)?;
+    Ok((frame, world_points, points))
+}
+
 /// The 2-D model of the view the parameter rules work in: the eye's depth range and φ toward the
 /// light.
 pub(crate) fn view_model(input: &PlanInput) -> Result<(FrustumModel, f64), ShadowError> {
@@ -72,11 +86,7 @@ pub(crate) fn view_model(input: &PlanInput) -> Result<(FrustumModel, f64), Shado
 
 /// Uniform and LiSPSM: P fitted to B in light space (LiSPSM §3.4–3.5).
 fn light_space_warp(input: &PlanInput, technique: Technique) -> Result<LightSetup, ShadowError> {
-    let frame = LightFrame::new(&input.eye, &input.light, technique.key())?;
-    let world_points = focus_points(input)?;
-    let points = frame
-        .light_points(&world_points)
-        .ok_or(ShadowError::LightInsideFocusBody)?;
+    let (frame, world_points, points) = focus_in_light_space(input, technique)?;
     let (model, half_fov) = view_model(input)?;
     let gamma = LightAngle::from_radians(frame.gamma())?;
     let depth = Extents::of(&points).max.z - Extents::of(&points).min.z;
@@ -212,11 +222,7 @@ fn production_kappa(
 /// depth range is B's.
 fn uniform_limited(input: &PlanInput) -> Result<LightSetup, ShadowError> {
     let technique = Technique::UniformLimited;
-    let frame = LightFrame::new(&input.eye, &input.light, technique.key())?;
-    let world_points = focus_points(input)?;
-    let points = frame
-        .light_points(&world_points)
-        .ok_or(ShadowError::LightInsideFocusBody)?;
+    let (frame, world_points, points) = focus_in_light_space(input, technique)?;
     let (_, half_fov) = view_model(input)?;
     let extents = Extents::of(&points);
     // The view frustum's corners on the shadow-map plane (x, z); for a spot light, B's points
