@@ -122,7 +122,7 @@
 
 use glam::{DMat4, DVec2, DVec3, DVec4};
 use shadowlab_hull::{
-    ConvexHull2, ConvexPolyhedron, MinAreaRect, Plane, Tolerances, convex_hull_2d, focus_body,
+    ConvexHull2, ConvexPolyhedron, MinAreaRect, Plane, Tolerances, convex_hull_2d,
 };
 use shadowlab_raster::{
     DepthFormat, EyeImage, EyeTarget, NO_TRIANGLE, RasterOptions, Rasterizer, Triangles,
@@ -131,10 +131,10 @@ use shadowlab_scene::Scene;
 
 use crate::error::ShadowError;
 use crate::frame::LightFrame;
-use crate::input::{FocusPolicy, LightSource, PlanInput};
+use crate::input::{LightSource, PlanInput};
 use crate::lookup::{Bias, Filter, Lookup};
 use crate::map::{MapOptions, ShadowMap};
-use crate::plan::{Partition, Splits, partition_inputs};
+use crate::plan::{Partition, Splits, focus_polyhedron, partition_inputs};
 use crate::setup::{LightSetup, ShadowMapping};
 use crate::technique::{StepDirection, Technique};
 use crate::warp::Extents;
@@ -1092,24 +1092,6 @@ fn light_space(input: &PlanInput, world: &[DVec3]) -> Result<(DMat4, LightPoint)
                 DMat4::from_scale(DVec3::splat(1.0 / radius)) * DMat4::from_translation(-centre);
             Ok((normalise * to_frame, LightPoint::Infinity))
         }
-    }
-}
-
-/// The focus body of `input`'s policy as a polyhedron (world space).
-fn focus_polyhedron(input: &PlanInput) -> Result<ConvexPolyhedron, ShadowError> {
-    let frustum = input.eye.frustum();
-    match input.focus {
-        FocusPolicy::ViewFrustum => Ok(ConvexPolyhedron::from_frustum(
-            &frustum,
-            &Tolerances::DEFAULT,
-        )?),
-        FocusPolicy::Scene => focus_body(
-            &frustum,
-            &input.scene,
-            &input.light.hull_light(),
-            &Tolerances::DEFAULT,
-        )?
-        .ok_or(ShadowError::EmptyFocusBody),
     }
 }
 

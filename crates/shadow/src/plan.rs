@@ -2,7 +2,8 @@
 
 use glam::{DMat4, DVec2, DVec3, DVec4};
 use shadowlab_hull::{
-    Aabb2, ConvexHull2, MinAreaRect, Perspective, Tolerances, convex_hull_2d, focus_body,
+    Aabb2, ConvexHull2, ConvexPolyhedron, MinAreaRect, Perspective, Tolerances, convex_hull_2d,
+    focus_body,
 };
 use shadowlab_params::splits::SplitScheme;
 use shadowlab_params::{DepthRange, FrustumModel, HalfFov, LightAngle};
@@ -39,21 +40,30 @@ pub fn plan(input: &PlanInput, technique: Technique) -> Result<LightSetup, Shado
     }
 }
 
-/// The vertices of the focus body B of `input`'s policy, in world space.
+/// The vertices of the focus body B of `input`'s policy, in world space (the view frustum's
+/// corners in their order for [`FocusPolicy::ViewFrustum`]).
 pub(crate) fn focus_points(input: &PlanInput) -> Result<Vec<DVec3>, ShadowError> {
+    match input.focus {
+        FocusPolicy::ViewFrustum => Ok(input.eye.frustum().corners().to_vec()),
+        FocusPolicy::Scene => Ok(focus_polyhedron(input)?.vertices().to_vec()),
+    }
+}
+
+/// The focus body B of `input`'s policy as a polyhedron (world space).
+pub(crate) fn focus_polyhedron(input: &PlanInput) -> Result<ConvexPolyhedron, ShadowError> {
     let frustum = input.eye.frustum();
     match input.focus {
-        FocusPolicy::ViewFrustum => Ok(frustum.corners().to_vec()),
-        FocusPolicy::Scene => {
-            let body = focus_body(
-                &frustum,
-                &input.scene,
-                &input.light.hull_light(),
-                &Tolerances::DEFAULT,
-            )?
-            .ok_or(ShadowError::EmptyFocusBody)?;
-            Ok(body.vertices().to_vec())
-        }
+        FocusPolicy::ViewFrustum => Ok(ConvexPolyhedron::from_frustum(
+            &frustum,
+            &Tolerances::DEFAULT,
+        )?),
+        FocusPolicy::Scene => focus_body(
+            &frustum,
+            &input.scene,
+            &input.light.hull_light(),
+            &Tolerances::DEFAULT,
+        )?
+        .ok_or(ShadowError::EmptyFocusBody),
     }
 }
 
