@@ -1,11 +1,11 @@
-//! The inner loop: one triangle's pixels within one tile, in blocks of 8 × 8.
+//! The inner loop: one triangle's pixels within one tile, in blocks of 8 columns × 16 rows.
 //!
 //! An edge function at pixel centres is `E = 256·K + r` with `r` the same for every centre (the
 //! vertices are on the 1/256 grid and the centres half a pixel off it), so `E ≥ 0` exactly when
 //! `E >> 8 ≥ 0` (an arithmetic shift, i.e. a floor), and `E >> 8` changes by `step >> 8` per column
 //! or row — an exact integer below 2^24 in magnitude. Within a block, `E >> 8` at the block's
 //! corner, clamped to ±2^30 (beyond which no step within the block can change its sign), plus at
-//! most 14 such steps fits an i32. So each row of a block is eight i32 lanes per edge: three adds,
+//! most 22 such steps fits an i32. So each row of a block is eight i32 lanes per edge: three adds,
 //! two ORs and a sign test give the row's coverage as a bit mask, with no division and no branch per
 //! pixel. The covered columns of a row of a convex triangle are contiguous, so the row's fragments
 //! are the span between the mask's lowest and highest bit.
@@ -21,11 +21,19 @@ use crate::vertex::WindowVertex;
 
 /// Receives the fragments of one tile, eight pixels of a row at a time.
 pub(crate) trait Sink {
-    /// The eight pixels at tile indices `start..start + 8` (within one row of the tile's storage,
-    /// padding included): lane k is *not* covered when `uncovered[k]` is all ones (covered when zero), and
-    /// has window depth `z[k]`. Returns how many covered fragments passed (were stored). Uncovered
-    /// lanes must be left as they are.
-    fn row(&mut self, start: usize, uncovered: &Lanes<u32>, z: &Lanes<f64>, triangle: u32) -> u64;
+    /// Eight pixels in two halves: lanes `0..4` at tile indices `start..start + 4` and lanes `4..8`
+    /// at `start + SPLIT..start + SPLIT + 4` — with `SPLIT` = [`HALF`], eight consecutive pixels
+    /// of one row of the tile's storage (padding included); with `SPLIT` = [`TILE_STRIDE`], four
+    /// pixels of a row and the four above them. Lane k is *not* covered when `uncovered[k]` is all
+    /// ones (covered when zero), and has window depth `z[k]`. Returns how many covered fragments
+    /// passed (were stored). Uncovered lanes must be left as they are.
+    fn row<const SPLIT: usize>(
+        &mut self,
+        start: usize,
+        uncovered: &Lanes<u32>,
+        z: &Lanes<f64>,
+        triangle: u32,
+    ) -> u64;
 
     /// One covered pixel at tile index `index` with window depth `z`; returns 1 if it passed.
     fn fragment(&mut self, index: usize, z: f64, triangle: u32) -> u64;
@@ -63,10 +71,25 @@ pub(crate) const MAX_SMALL_BOX: i64 = 32;
 pub(crate) const BLOCK: usize = 8;
 /// [`BLOCK`] as a coordinate.
 pub(crate) const BLOCK_I64: i64 = 8;
+/// Block height, in pixels: the rows stepped from one clamped corner (see [`CLAMP`]). Taller than
+/// wide because a triangle's box ends where it ends, not on a block boundary: with blocks of 8 rows,
+/// a box of 9 rows took a second block for its last row (measured: see docs/benchmarks.md).
+const BLOCK_ROWS: i64 = 16;
+/// Half a block row: boxes at most this wide are drawn two rows per lane row.
+pub(crate) const HALF: usize = BLOCK / 2;
+/// [`HALF`] as a coordinate.
+const HALF_I64: i64 = 4;
 /// The column offsets of the lanes.
 const COLUMNS: i32x8 = i32x8::new([0, 1, 2, 3, 4, 5, 6, 7]);
-/// Beyond this magnitude, `E >> 8` keeps its sign across a block (at most 14 steps of < 2^24).
+/// The column offsets of the lanes of a row pair (see [`Sink::row`]).
+const PAIR_COLUMNS: i32x8 = i32x8::new([0, 1, 2, 3, 0, 1, 2, 3]);
+/// The row offsets of the lanes of a row pair.
+const PAIR_ROWS: i32x8 = i32x8::new([0, 0, 0, 0, 1, 1, 1, 1]);
+/// Beyond this magnitude, `E >> 8` keeps its sign across a block: at most `BLOCK − 1` column and
+/// `BLOCK_ROWS − 1` row steps of < 2^24 each, 22 · 2^24 < 2^30; and the clamped corner plus those
+/// steps stays below 2^30 + 2^29 in magnitude, inside an i32.
 const CLAMP: i64 = 1 << 30;
+const _: () = assert!((BLOCK_I64 - 1 + BLOCK_ROWS - 1) << 24 < CLAMP);
 
 /// `E >> 8` at a block corner, clamped to ±2^30.
 #[inline(always)]
@@ -150,7 +173,7 @@ pub(crate) fn for_each_in_mask(
 }
 
 /// Sends the fragments of a counter-clockwise triangle (with doubled area `area`) that fall in
-/// `tile` (within the triangle's pixel box) to `sink`, row by row within 8 × 8 blocks. Returns the
+/// `tile` (within the triangle's pixel box) to `sink`, row by row within blocks of 8 × 16. Returns the
 /// number that passed. The depth plane (a division) is set up only once a small box is known to
 /// cover some centre, as many of the tiny triangles of dense meshes do not.
 #[inline]
@@ -189,17 +212,36 @@ pub(crate) fn rasterize<S: Sink>(
         return passed;
     }
     let depth = DepthPlane::new(oriented, area);
+    if i1 - i0 < HALF_I64 {
+        rasterize_narrow(&edges, &depth, i0..=i1, j0..=j1, tile, triangle, sink)
+    } else {
+        rasterize_blocks(&edges, &depth, i0..=i1, j0..=j1, tile, triangle, sink)
+    }
+}
+
+/// [`rasterize`] for a box of any width, in blocks of [`BLOCK`] columns and [`BLOCK_ROWS`] rows.
+#[inline(always)]
+fn rasterize_blocks<S: Sink>(
+    edges: &[Edge; 3],
+    depth: &DepthPlane,
+    columns: RangeInclusive<i64>,
+    rows: RangeInclusive<i64>,
+    tile: &TileRect,
+    triangle: u32,
+    sink: &mut S,
+) -> u64 {
+    let (i0, i1, j0, j1) = (*columns.start(), *columns.end(), *rows.start(), *rows.end());
     // Per edge, the change of `E >> 8` from the block's first column to each lane's, and per row.
     let lanes = edges.map(|edge| COLUMNS * i32x8::splat(step(edge.step_i)));
     let row_steps = edges.map(|edge| i32x8::splat(step(edge.step_j)));
     let mut passed = 0;
     let mut bj = j0;
     // Blocks start at the box's first column: a triangle up to eight pixels wide takes one block
-    // per eight rows. The tile rows' padding keeps every block row inside its tile row; lanes
+    // per sixteen rows. The tile rows' padding keeps every block row inside its tile row; lanes
     // outside the triangle's box are masked off.
     let first_block_column = i0;
     while bj <= j1 {
-        let rows = (j1 - bj + 1).min(BLOCK_I64);
+        let rows = (j1 - bj + 1).min(BLOCK_ROWS);
         let mut bi = first_block_column;
         while bi <= i1 {
             // Lanes outside the box's columns [i0, i1]: k − (i0 − bi) or (i1 − bi) − k is negative.
@@ -231,7 +273,7 @@ pub(crate) fn rasterize<S: Sink>(
                 for k in 0..BLOCK {
                     z[k] = row_z + column_z[k];
                 }
-                passed += sink.row(start, &uncovered, &z, triangle);
+                passed += sink.row::<HALF>(start, &uncovered, &z, triangle);
                 for (value, row_step) in values.iter_mut().zip(row_steps) {
                     *value += row_step;
                 }
@@ -239,7 +281,72 @@ pub(crate) fn rasterize<S: Sink>(
             }
             bi += BLOCK_I64;
         }
-        bj += BLOCK_I64;
+        bj += BLOCK_ROWS;
+    }
+    passed
+}
+
+/// [`rasterize`] for a box at most [`HALF`] columns wide, two rows per lane row (lanes `0..4` a
+/// row's columns, lanes `4..8` the same columns of the row above), in blocks of 4 × 16 pixels —
+/// half the lane rows a block of eight lanes would take for the narrow boxes that dense meshes are
+/// made of. Each pixel gets the same coverage and the same depth (the same sum of the same row and
+/// column parts) as in a block of eight.
+#[inline(always)]
+fn rasterize_narrow<S: Sink>(
+    edges: &[Edge; 3],
+    depth: &DepthPlane,
+    columns: RangeInclusive<i64>,
+    rows: RangeInclusive<i64>,
+    tile: &TileRect,
+    triangle: u32,
+    sink: &mut S,
+) -> u64 {
+    let (i0, i1, j0, j1) = (*columns.start(), *columns.end(), *rows.start(), *rows.end());
+    // Per edge, the change of `E >> 8` from the block's corner to each lane's, and per row pair.
+    let lanes = edges.map(|edge| {
+        PAIR_COLUMNS * i32x8::splat(step(edge.step_i)) + PAIR_ROWS * i32x8::splat(step(edge.step_j))
+    });
+    let pair_steps = edges.map(|edge| i32x8::splat(2 * step(edge.step_j)));
+    #[expect(clippy::cast_possible_truncation, reason = "below HALF")]
+    let last_column = i32x8::splat((i1 - i0) as i32);
+    // Lanes right of the box, in both rows of a pair; for a last single row, also the upper half.
+    let outside = (last_column - PAIR_COLUMNS).is_negative();
+    let single_outside = outside | (i32x8::splat(0) - PAIR_ROWS);
+    let column_z = depth.column_depths(i0);
+    let mut passed = 0;
+    let mut bj = j0;
+    while bj <= j1 {
+        let block_rows = (j1 - bj + 1).min(BLOCK_ROWS);
+        // `E >> 8` at the lanes of the block's first row pair, per edge; at most 3 column and 15
+        // row steps from the clamped corner, within the bound of an ordinary block.
+        let mut values = [0, 1, 2].map(|e| i32x8::splat(corner(edges[e].at(i0, bj))) + lanes[e]);
+        #[expect(
+            clippy::cast_sign_loss,
+            clippy::cast_possible_truncation,
+            reason = "the block lies inside the tile"
+        )]
+        let mut start = ((bj - tile.y0) as usize) * TILE_STRIDE + (i0 - tile.x0) as usize;
+        let mut r = 0;
+        while r + 1 < block_rows {
+            let uncovered = row_uncovered(&values, outside);
+            let row_z = [depth.row_depth(bj + r), depth.row_depth(bj + r + 1)];
+            let z: Lanes<f64> = std::array::from_fn(|k| row_z[k / HALF] + column_z[k % HALF]);
+            passed += sink.row::<TILE_STRIDE>(start, &uncovered, &z, triangle);
+            for (value, pair_step) in values.iter_mut().zip(pair_steps) {
+                *value += pair_step;
+            }
+            start += 2 * TILE_STRIDE;
+            r += 2;
+        }
+        if r < block_rows {
+            // The row above may lie outside the tile's storage: the last row alone, as the first
+            // half of an ordinary row.
+            let uncovered = row_uncovered(&values, single_outside);
+            let row_z = depth.row_depth(bj + r);
+            let z: Lanes<f64> = std::array::from_fn(|k| row_z + column_z[k % HALF]);
+            passed += sink.row::<HALF>(start, &uncovered, &z, triangle);
+        }
+        bj += BLOCK_ROWS;
     }
     passed
 }
@@ -247,6 +354,7 @@ pub(crate) fn rasterize<S: Sink>(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::triangle::{Verdict, classify};
 
     /// The shifted, clamped lane arithmetic gives the sign of the exact edge function everywhere in
     /// a block, for edges of every slope and magnitude.
@@ -268,6 +376,8 @@ mod tests {
             (1 << 32) - 256,
             -(1 << 32) + 256,
         ];
+        // The largest steps a block may take: just below 2^24 after the shift.
+        assert_eq!(step((1 << 32) - 256), (1 << 24) - 1);
         for e in values {
             for step_i in steps {
                 for step_j in steps {
@@ -276,7 +386,7 @@ mod tests {
                     let zero = i32x8::splat(0);
                     let first_row = i32x8::splat(corner(e)) + COLUMNS * i32x8::splat(step(si));
                     let mut values = [first_row, zero, zero];
-                    for r in 0..8i64 {
+                    for r in 0..BLOCK_ROWS {
                         let uncovered = row_uncovered(&values, zero);
                         for (k, lane) in (0..8i64).zip(uncovered) {
                             let exact = e + sj * r + si * k >= 0;
@@ -287,5 +397,81 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// Records every covered pixel a path sends, with its depth's bits.
+    #[derive(Default)]
+    struct Recorder(Vec<(usize, u64)>);
+
+    impl Sink for Recorder {
+        fn row<const SPLIT: usize>(
+            &mut self,
+            start: usize,
+            uncovered: &Lanes<u32>,
+            z: &Lanes<f64>,
+            _triangle: u32,
+        ) -> u64 {
+            for k in (0..BLOCK).filter(|&k| uncovered[k] == 0) {
+                self.0
+                    .push((start + (k / HALF) * SPLIT + k % HALF, z[k].to_bits()));
+            }
+            0
+        }
+
+        fn fragment(&mut self, index: usize, z: f64, _triangle: u32) -> u64 {
+            self.0.push((index, z.to_bits()));
+            0
+        }
+    }
+
+    /// The narrow path (two rows per lane row) sends exactly the pixels and depths of the block
+    /// path, for boxes of one to four columns and up to a whole tile's rows, anywhere in a tile.
+    #[test]
+    fn narrow_boxes_give_what_blocks_give() {
+        use crate::triangle::counter_clockwise;
+        let mut state = 0x2545_f491_4f6c_dd1d_u64;
+        let mut next = move |n: i64| {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            #[expect(clippy::cast_possible_wrap, reason = "below n")]
+            let v = (state % n.unsigned_abs()) as i64;
+            v
+        };
+        let tile = TileRect {
+            x0: 64,
+            y0: 128,
+            width: 64,
+            height: 64,
+        };
+        let mut compared = 0;
+        for _ in 0..20_000 {
+            // A thin triangle in grid units: up to 4 pixels wide, up to 70 tall, anywhere.
+            let (x, y) = (256 * (60 + next(70)), 256 * (120 + next(80)));
+            #[expect(clippy::cast_possible_truncation, reason = "small grid values")]
+            let v: [WindowVertex; 3] = std::array::from_fn(|_| WindowVertex {
+                x: (x + next(4 * 256)) as i32,
+                y: (y + next(70 * 256)) as i32,
+                z: 0.25 + 0.5 * f64::from(u32::try_from(next(1000)).unwrap_or(0)) / 1000.0,
+            });
+            let Verdict::Draw(b, area) = classify(&v, crate::CullMode::None, 4096, 4096) else {
+                continue;
+            };
+            let (i0, i1) = (b.min_i.max(tile.x0), b.max_i.min(tile.x0 + tile.width - 1));
+            let (j0, j1) = (b.min_j.max(tile.y0), b.max_j.min(tile.y0 + tile.height - 1));
+            if i0 > i1 || j0 > j1 || i1 - i0 >= HALF_I64 {
+                continue;
+            }
+            let oriented = counter_clockwise(&v, area);
+            let (edges, depth) = (edges(&oriented), DepthPlane::new(&oriented, area));
+            let (mut narrow, mut blocks) = (Recorder::default(), Recorder::default());
+            rasterize_narrow(&edges, &depth, i0..=i1, j0..=j1, &tile, 0, &mut narrow);
+            rasterize_blocks(&edges, &depth, i0..=i1, j0..=j1, &tile, 0, &mut blocks);
+            narrow.0.sort_unstable();
+            blocks.0.sort_unstable();
+            assert_eq!(narrow.0, blocks.0, "{v:?}");
+            compared += usize::from(!blocks.0.is_empty());
+        }
+        assert!(compared > 5_000, "{compared}");
     }
 }

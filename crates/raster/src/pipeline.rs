@@ -20,7 +20,7 @@ use rayon::prelude::*;
 use crate::clip::{ClippedTriangle, clip_triangle};
 use crate::depth::{DepthCompare, DepthFormat, F32Key, ReversedF32Key, Unorm16Key, Unorm24Key};
 use crate::error::RasterError;
-use crate::kernel::{BLOCK, Lanes, Sink, TileKernel, TileRect, for_each_in_mask, rasterize};
+use crate::kernel::{BLOCK, HALF, Lanes, Sink, TileKernel, TileRect, for_each_in_mask, rasterize};
 use crate::target::{DepthPairTarget, DepthTarget, EyeTarget, TILE_SHIFT, TILE_STRIDE, TargetSize};
 use crate::triangle::{CullMode, DepthPlane, Edge, Verdict, classify, counter_clockwise, edges};
 use crate::vertex::{Viewport, WindowVertex, code, transform, transform_vertices};
@@ -254,15 +254,19 @@ impl Rasterizer {
         mesh: Triangles<'_>,
         clip_from_world: &DMat4,
     ) -> Result<DrawStats, RasterError> {
-        let options = self.options;
-        let binned = self.bin(target.size(), mesh, clip_from_world)?;
-        let fragments = with_key(target.format(), |key| match key {
-            Key::F32 => target.draw_tiles::<F32Key, _>(options.compare, &binned),
-            Key::ReversedF32 => target.draw_tiles::<ReversedF32Key, _>(options.compare, &binned),
-            Key::Unorm24 => target.draw_tiles::<Unorm24Key, _>(options.compare, &binned),
-            Key::Unorm16 => target.draw_tiles::<Unorm16Key, _>(options.compare, &binned),
-        });
-        Ok(binned.finish(fragments))
+        on_pool(|| {
+            let options = self.options;
+            let binned = self.bin(target.size(), mesh, clip_from_world)?;
+            let fragments = with_key(target.format(), |key| match key {
+                Key::F32 => target.draw_tiles::<F32Key, _>(options.compare, &binned),
+                Key::ReversedF32 => {
+                    target.draw_tiles::<ReversedF32Key, _>(options.compare, &binned)
+                }
+                Key::Unorm24 => target.draw_tiles::<Unorm24Key, _>(options.compare, &binned),
+                Key::Unorm16 => target.draw_tiles::<Unorm16Key, _>(options.compare, &binned),
+            });
+            Ok(binned.finish(fragments))
+        })
     }
 
     /// Draws `mesh` into a target keeping the nearest and second-nearest depth of every pixel.
@@ -272,14 +276,16 @@ impl Rasterizer {
         mesh: Triangles<'_>,
         clip_from_world: &DMat4,
     ) -> Result<DrawStats, RasterError> {
-        let binned = self.bin(target.size(), mesh, clip_from_world)?;
-        let fragments = with_key(target.format(), |key| match key {
-            Key::F32 => target.draw_tiles::<F32Key, _>(&binned),
-            Key::ReversedF32 => target.draw_tiles::<ReversedF32Key, _>(&binned),
-            Key::Unorm24 => target.draw_tiles::<Unorm24Key, _>(&binned),
-            Key::Unorm16 => target.draw_tiles::<Unorm16Key, _>(&binned),
-        });
-        Ok(binned.finish(fragments))
+        on_pool(|| {
+            let binned = self.bin(target.size(), mesh, clip_from_world)?;
+            let fragments = with_key(target.format(), |key| match key {
+                Key::F32 => target.draw_tiles::<F32Key, _>(&binned),
+                Key::ReversedF32 => target.draw_tiles::<ReversedF32Key, _>(&binned),
+                Key::Unorm24 => target.draw_tiles::<Unorm24Key, _>(&binned),
+                Key::Unorm16 => target.draw_tiles::<Unorm16Key, _>(&binned),
+            });
+            Ok(binned.finish(fragments))
+        })
     }
 
     /// Draws `mesh` into an eye target: depth and the visible triangle's index per pixel.
@@ -289,15 +295,19 @@ impl Rasterizer {
         mesh: Triangles<'_>,
         clip_from_world: &DMat4,
     ) -> Result<DrawStats, RasterError> {
-        let options = self.options;
-        let binned = self.bin(target.size(), mesh, clip_from_world)?;
-        let fragments = with_key(target.format(), |key| match key {
-            Key::F32 => target.draw_tiles::<F32Key, _>(options.compare, &binned),
-            Key::ReversedF32 => target.draw_tiles::<ReversedF32Key, _>(options.compare, &binned),
-            Key::Unorm24 => target.draw_tiles::<Unorm24Key, _>(options.compare, &binned),
-            Key::Unorm16 => target.draw_tiles::<Unorm16Key, _>(options.compare, &binned),
-        });
-        Ok(binned.finish(fragments))
+        on_pool(|| {
+            let options = self.options;
+            let binned = self.bin(target.size(), mesh, clip_from_world)?;
+            let fragments = with_key(target.format(), |key| match key {
+                Key::F32 => target.draw_tiles::<F32Key, _>(options.compare, &binned),
+                Key::ReversedF32 => {
+                    target.draw_tiles::<ReversedF32Key, _>(options.compare, &binned)
+                }
+                Key::Unorm24 => target.draw_tiles::<Unorm24Key, _>(options.compare, &binned),
+                Key::Unorm16 => target.draw_tiles::<Unorm16Key, _>(options.compare, &binned),
+            });
+            Ok(binned.finish(fragments))
+        })
     }
 
     /// Calls `f` for every pixel centre covered by `mesh` on a `size` target, without a depth test:
@@ -396,6 +406,15 @@ enum Key {
     ReversedF32,
     Unorm24,
     Unorm16,
+}
+
+/// Runs a draw's phases on a thread of the current rayon pool. Called from outside the pool, each
+/// parallel phase would otherwise be sent to the pool separately while the calling thread sleeps,
+/// and each wake-up of the caller between phases cost time the pool's threads spent idle: measured
+/// 7 % of the bunny's eye pass on two threads (docs/benchmarks.md). Inside a pool, `f` runs where
+/// it is.
+fn on_pool<R: Send>(f: impl FnOnce() -> R + Send) -> R {
+    rayon::scope(|_| f())
 }
 
 fn with_key<R>(format: DepthFormat, f: impl FnOnce(Key) -> R) -> R {
@@ -717,10 +736,17 @@ struct CallbackSink<'f, F> {
 }
 
 impl<F: FnMut(Fragment)> Sink for CallbackSink<'_, F> {
-    fn row(&mut self, start: usize, uncovered: &Lanes<u32>, z: &Lanes<f64>, triangle: u32) -> u64 {
+    fn row<const SPLIT: usize>(
+        &mut self,
+        start: usize,
+        uncovered: &Lanes<u32>,
+        z: &Lanes<f64>,
+        triangle: u32,
+    ) -> u64 {
         let mut count = 0;
         for k in (0..BLOCK).filter(|&k| uncovered[k] == 0) {
-            count += self.fragment(start + k, z[k], triangle);
+            let index = start + (k / HALF) * SPLIT + k % HALF;
+            count += self.fragment(index, z[k], triangle);
         }
         count
     }

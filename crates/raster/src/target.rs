@@ -5,7 +5,7 @@
 use crate::depth::{DepthCompare, DepthFormat, DepthKey};
 use crate::error::RasterError;
 use crate::fixed::MAX_TARGET_SIZE;
-use crate::kernel::{BLOCK, Lanes, Sink, TileKernel};
+use crate::kernel::{BLOCK, HALF, Lanes, Sink, TileKernel};
 
 /// Tile side in pixels, `2^TILE_SHIFT`.
 pub(crate) const TILE_SIZE: usize = 1 << TILE_SHIFT;
@@ -20,9 +20,6 @@ pub(crate) const TILE_PIXELS: usize = TILE_STRIDE * TILE_SIZE;
 /// Consecutive tiles (in storage order: along a row of tiles) drawn by one parallel job, chunk
 /// by chunk (see [`TileKernel::run`]).
 pub(crate) const TILE_GROUP: usize = 4;
-
-/// Tiles cleared per parallel job.
-const CLEAR_TILES_PER_JOB: usize = 64;
 
 /// The triangle id stored where no triangle covers a pixel.
 pub const NO_TRIANGLE: u32 = u32::MAX;
@@ -108,12 +105,82 @@ impl TargetSize {
     }
 }
 
+/// One value per pixel, stored tile by tile, with a clear that is carried out by the next draw.
+///
+/// A clear only records its value; the next draw fills each tile with it just before drawing into
+/// the tile, while the tile is in that thread's cache, and readers see the value where no draw has
+/// filled it yet. That spares a separate pass over the whole target (a 2048² target is 19 MB with
+/// its padding) and, for a caller outside the rayon pool, a separate parallel job whose hand-over
+/// cost more than the fill itself on small targets (docs/benchmarks.md).
+#[derive(Clone, Debug)]
+struct TiledPlane {
+    values: Vec<u32>,
+    /// The value every pixel holds if the last clear has not been carried out yet.
+    pending_clear: Option<u32>,
+}
+
+impl TiledPlane {
+    /// A plane of `size`'s tiles, cleared to `value`.
+    fn new(size: TargetSize, value: u32) -> Self {
+        Self {
+            values: vec![0; size.tile_count() * TILE_PIXELS],
+            pending_clear: Some(value),
+        }
+    }
+
+    /// Sets every pixel to `value` (carried out by the next draw).
+    fn clear(&mut self, value: u32) {
+        self.pending_clear = Some(value);
+    }
+
+    /// The values as a row-major image (row 0 at the bottom).
+    fn untile(&self, size: TargetSize) -> Vec<u32> {
+        match self.pending_clear {
+            Some(value) => vec![value; size.pixel_count()],
+            None => size.untile(&self.values),
+        }
+    }
+
+    /// The groups of [`TILE_GROUP`] tiles a draw writes in parallel, and the clear each group
+    /// must carry out before drawing (see [`fill_pending`]). The clear counts as done from here.
+    fn groups_mut(&mut self) -> (rayon::slice::ChunksMut<'_, u32>, Option<u32>) {
+        use rayon::prelude::*;
+        let pending = self.pending_clear.take();
+        (
+            self.values.par_chunks_mut(TILE_PIXELS * TILE_GROUP),
+            pending,
+        )
+    }
+}
+
+/// Carries out a pending clear on a group of tiles.
+#[inline]
+fn fill_pending(values: &mut [u32], pending: Option<u32>) {
+    if let Some(value) = pending {
+        values.fill(value);
+    }
+}
+
+/// Equal when every pixel holds the same value, whether cleared lazily or not.
+impl PartialEq for TiledPlane {
+    fn eq(&self, other: &Self) -> bool {
+        let all = |values: &[u32], value: u32| values.iter().all(|&v| v == value);
+        self.values.len() == other.values.len()
+            && match (self.pending_clear, other.pending_clear) {
+                (Some(a), Some(b)) => a == b,
+                (Some(a), None) => all(&other.values, a),
+                (None, Some(b)) => all(&self.values, b),
+                (None, None) => self.values == other.values,
+            }
+    }
+}
+
 /// A depth-only target: the shadow map.
 #[derive(Clone, Debug, PartialEq)]
 pub struct DepthTarget {
     size: TargetSize,
     format: DepthFormat,
-    keys: Vec<u32>,
+    keys: TiledPlane,
 }
 
 impl DepthTarget {
@@ -135,19 +202,20 @@ impl DepthTarget {
         Ok(Self {
             size,
             format,
-            keys: vec![format.encode(1.0); size.tile_count() * TILE_PIXELS],
+            keys: TiledPlane::new(size, format.encode(1.0)),
         })
     }
 
-    /// Sets every pixel to window depth `depth` (clamped to `[0, 1]`), in parallel.
+    /// Sets every pixel to window depth `depth` (clamped to `[0, 1]`). Takes no time: the next
+    /// draw fills each tile as it draws it.
     pub fn clear(&mut self, depth: f64) {
-        fill(&mut self.keys, self.format.encode(depth));
+        self.keys.clear(self.format.encode(depth));
     }
 
     /// The stored keys, row-major with row 0 at the bottom (see [`DepthFormat`] for what a key is).
     #[must_use]
     pub fn keys(&self) -> Vec<u32> {
-        self.size.untile(&self.keys)
+        self.keys.untile(self.size)
     }
 
     /// Window depths in `[0, 1]` exactly as stored, row-major with row 0 at the bottom.
@@ -167,14 +235,15 @@ impl DepthTarget {
         kernel: &R,
     ) -> u64 {
         use rayon::prelude::*;
-        self.keys
-            .par_chunks_mut(TILE_PIXELS * TILE_GROUP)
+        let (groups, pending) = self.keys.groups_mut();
+        groups
             // One group per job: tiles differ wildly in cost (most are empty), and rayon's adaptive
             // splitting alone leaves one thread with most of the work when the caller is itself a
             // pool thread (its job never counts as stolen, so it is split less).
             .with_max_len(1)
             .enumerate()
             .map(|(g, keys)| {
+                fill_pending(keys, pending);
                 let tiles = keys.chunks_mut(TILE_PIXELS);
                 // The common test gets its own loop, without a per-fragment branch.
                 if compare == DepthCompare::Less {
@@ -207,8 +276,8 @@ impl DepthTarget {
 pub struct DepthPairTarget {
     size: TargetSize,
     format: DepthFormat,
-    nearest: Vec<u32>,
-    second: Vec<u32>,
+    nearest: TiledPlane,
+    second: TiledPlane,
 }
 
 impl DepthPairTarget {
@@ -231,24 +300,24 @@ impl DepthPairTarget {
         Ok(Self {
             size,
             format,
-            nearest: vec![far; size.tile_count() * TILE_PIXELS],
-            second: vec![far; size.tile_count() * TILE_PIXELS],
+            nearest: TiledPlane::new(size, far),
+            second: TiledPlane::new(size, far),
         })
     }
 
-    /// Sets both depths of every pixel to the far plane.
+    /// Sets both depths of every pixel to the far plane (carried out by the next draw).
     pub fn clear(&mut self) {
         let far = self.format.encode(1.0);
-        fill(&mut self.nearest, far);
-        fill(&mut self.second, far);
+        self.nearest.clear(far);
+        self.second.clear(far);
     }
 
     /// Nearest depths, row-major with row 0 at the bottom.
     #[must_use]
     pub fn nearest(&self) -> Vec<f64> {
         let format = self.format;
-        self.size
-            .untile(&self.nearest)
+        self.nearest
+            .untile(self.size)
             .into_iter()
             .map(|k| format.decode(k))
             .collect()
@@ -258,8 +327,8 @@ impl DepthPairTarget {
     #[must_use]
     pub fn second(&self) -> Vec<f64> {
         let format = self.format;
-        self.size
-            .untile(&self.second)
+        self.second
+            .untile(self.size)
             .into_iter()
             .map(|k| format.decode(k))
             .collect()
@@ -271,12 +340,15 @@ impl DepthPairTarget {
     /// writing into that tile only; returns the number of fragments that passed.
     pub(crate) fn draw_tiles<K: DepthKey, R: TileKernel>(&mut self, kernel: &R) -> u64 {
         use rayon::prelude::*;
-        self.nearest
-            .par_chunks_mut(TILE_PIXELS * TILE_GROUP)
-            .zip(self.second.par_chunks_mut(TILE_PIXELS * TILE_GROUP))
+        let (nearest_groups, pending_nearest) = self.nearest.groups_mut();
+        let (second_groups, pending_second) = self.second.groups_mut();
+        nearest_groups
+            .zip(second_groups)
             .with_max_len(1)
             .enumerate()
             .map(|(g, (nearest, second))| {
+                fill_pending(nearest, pending_nearest);
+                fill_pending(second, pending_second);
                 let mut sinks: Vec<_> = nearest
                     .chunks_mut(TILE_PIXELS)
                     .zip(second.chunks_mut(TILE_PIXELS))
@@ -298,8 +370,8 @@ impl DepthPairTarget {
 pub struct EyeTarget {
     size: TargetSize,
     format: DepthFormat,
-    keys: Vec<u32>,
-    triangles: Vec<u32>,
+    keys: TiledPlane,
+    triangles: TiledPlane,
 }
 
 impl EyeTarget {
@@ -321,23 +393,24 @@ impl EyeTarget {
         Ok(Self {
             size,
             format,
-            keys: vec![format.encode(1.0); size.tile_count() * TILE_PIXELS],
-            triangles: vec![NO_TRIANGLE; size.tile_count() * TILE_PIXELS],
+            keys: TiledPlane::new(size, format.encode(1.0)),
+            triangles: TiledPlane::new(size, NO_TRIANGLE),
         })
     }
 
-    /// Clears depth to the far plane and the triangle ids to [`NO_TRIANGLE`].
+    /// Clears depth to the far plane and the triangle ids to [`NO_TRIANGLE`] (carried out by the
+    /// next draw).
     pub fn clear(&mut self) {
-        fill(&mut self.keys, self.format.encode(1.0));
-        fill(&mut self.triangles, NO_TRIANGLE);
+        self.keys.clear(self.format.encode(1.0));
+        self.triangles.clear(NO_TRIANGLE);
     }
 
     /// Window depths as stored, row-major with row 0 at the bottom.
     #[must_use]
     pub fn depths(&self) -> Vec<f64> {
         let format = self.format;
-        self.size
-            .untile(&self.keys)
+        self.keys
+            .untile(self.size)
             .into_iter()
             .map(|k| format.decode(k))
             .collect()
@@ -347,7 +420,7 @@ impl EyeTarget {
     /// bottom.
     #[must_use]
     pub fn triangles(&self) -> Vec<u32> {
-        self.size.untile(&self.triangles)
+        self.triangles.untile(self.size)
     }
 }
 
@@ -360,12 +433,15 @@ impl EyeTarget {
         kernel: &R,
     ) -> u64 {
         use rayon::prelude::*;
-        self.keys
-            .par_chunks_mut(TILE_PIXELS * TILE_GROUP)
-            .zip(self.triangles.par_chunks_mut(TILE_PIXELS * TILE_GROUP))
+        let (key_groups, pending_keys) = self.keys.groups_mut();
+        let (triangle_groups, pending_triangles) = self.triangles.groups_mut();
+        key_groups
+            .zip(triangle_groups)
             .with_max_len(1)
             .enumerate()
             .map(|(g, (keys, triangles))| {
+                fill_pending(keys, pending_keys);
+                fill_pending(triangles, pending_triangles);
                 let tiles = keys
                     .chunks_mut(TILE_PIXELS)
                     .zip(triangles.chunks_mut(TILE_PIXELS));
@@ -393,16 +469,6 @@ impl EyeTarget {
             })
             .sum()
     }
-}
-
-fn fill(values: &mut [u32], value: u32) {
-    use rayon::prelude::*;
-    // Equal work per tile: 64 tiles (1 MiB) per job keeps the job overhead negligible and still
-    // splits a 2048² target into 16 jobs, whoever calls.
-    values
-        .par_chunks_mut(TILE_PIXELS)
-        .with_max_len(CLEAR_TILES_PER_JOB)
-        .for_each(|tile| tile.fill(value));
 }
 
 /// A depth comparison as a type, so the common `Less` compiles without a per-fragment branch.
@@ -450,12 +516,29 @@ struct DepthSink<'a, K, C> {
     key: std::marker::PhantomData<K>,
 }
 
-/// The eight keys of a block row.
+/// The eight stored values of a block row whose second half lies `SPLIT` after its first (see
+/// [`Sink::row`]): one load when the halves are adjacent, two otherwise.
 #[inline(always)]
-fn lanes(values: &mut [u32], start: usize) -> &mut Lanes<u32> {
-    (&mut values[start..start + BLOCK])
-        .try_into()
-        .expect("a block row lies inside the tile")
+fn load<const SPLIT: usize>(values: &[u32], start: usize) -> Lanes<u32> {
+    let mut lanes = [0; BLOCK];
+    if SPLIT == HALF {
+        lanes.copy_from_slice(&values[start..start + BLOCK]);
+    } else {
+        lanes[..HALF].copy_from_slice(&values[start..start + HALF]);
+        lanes[HALF..].copy_from_slice(&values[start + SPLIT..start + SPLIT + HALF]);
+    }
+    lanes
+}
+
+/// Stores what [`load`] loaded.
+#[inline(always)]
+fn store<const SPLIT: usize>(values: &mut [u32], start: usize, lanes: &Lanes<u32>) {
+    if SPLIT == HALF {
+        values[start..start + BLOCK].copy_from_slice(lanes);
+    } else {
+        values[start..start + HALF].copy_from_slice(&lanes[..HALF]);
+        values[start + SPLIT..start + SPLIT + HALF].copy_from_slice(&lanes[HALF..]);
+    }
 }
 
 /// All ones where `pass`, zero otherwise (written as a select of constants, which compiles to a
@@ -474,8 +557,14 @@ fn select(pass: u32, new: u32, old: u32) -> u32 {
 
 impl<K: DepthKey, C: Compare> Sink for DepthSink<'_, K, C> {
     #[inline(always)]
-    fn row(&mut self, start: usize, uncovered: &Lanes<u32>, z: &Lanes<f64>, _triangle: u32) -> u64 {
-        let keys = lanes(self.keys, start);
+    fn row<const SPLIT: usize>(
+        &mut self,
+        start: usize,
+        uncovered: &Lanes<u32>,
+        z: &Lanes<f64>,
+        _triangle: u32,
+    ) -> u64 {
+        let mut keys = load::<SPLIT>(self.keys, start);
         let mut passed = 0;
         for k in 0..BLOCK {
             let key = K::encode(z[k]);
@@ -483,6 +572,7 @@ impl<K: DepthKey, C: Compare> Sink for DepthSink<'_, K, C> {
             keys[k] = merged;
             passed += pass & 1;
         }
+        store::<SPLIT>(self.keys, start, &keys);
         u64::from(passed)
     }
 
@@ -505,9 +595,15 @@ struct PairSink<'a, K> {
 
 impl<K: DepthKey> Sink for PairSink<'_, K> {
     #[inline(always)]
-    fn row(&mut self, start: usize, uncovered: &Lanes<u32>, z: &Lanes<f64>, _triangle: u32) -> u64 {
-        let nearest = lanes(self.nearest, start);
-        let second = lanes(self.second, start);
+    fn row<const SPLIT: usize>(
+        &mut self,
+        start: usize,
+        uncovered: &Lanes<u32>,
+        z: &Lanes<f64>,
+        _triangle: u32,
+    ) -> u64 {
+        let mut nearest = load::<SPLIT>(self.nearest, start);
+        let mut second = load::<SPLIT>(self.second, start);
         let mut passed = 0;
         for k in 0..BLOCK {
             let key = K::encode(z[k]);
@@ -518,6 +614,8 @@ impl<K: DepthKey> Sink for PairSink<'_, K> {
             second[k] = select(nearer, near, select(between, key, next));
             passed += u64::from((nearer | between) & 1);
         }
+        store::<SPLIT>(self.nearest, start, &nearest);
+        store::<SPLIT>(self.second, start, &second);
         passed
     }
 
@@ -548,9 +646,15 @@ struct EyeSink<'a, K, C> {
 
 impl<K: DepthKey, C: Compare> Sink for EyeSink<'_, K, C> {
     #[inline(always)]
-    fn row(&mut self, start: usize, uncovered: &Lanes<u32>, z: &Lanes<f64>, triangle: u32) -> u64 {
-        let keys = lanes(self.keys, start);
-        let ids = lanes(self.triangles, start);
+    fn row<const SPLIT: usize>(
+        &mut self,
+        start: usize,
+        uncovered: &Lanes<u32>,
+        z: &Lanes<f64>,
+        triangle: u32,
+    ) -> u64 {
+        let mut keys = load::<SPLIT>(self.keys, start);
+        let mut ids = load::<SPLIT>(self.triangles, start);
         let mut passed = 0;
         for k in 0..BLOCK {
             let key = K::encode(z[k]);
@@ -559,6 +663,8 @@ impl<K: DepthKey, C: Compare> Sink for EyeSink<'_, K, C> {
             ids[k] = select(pass, triangle, ids[k]);
             passed += u64::from(pass & 1);
         }
+        store::<SPLIT>(self.keys, start, &keys);
+        store::<SPLIT>(self.triangles, start, &ids);
         passed
     }
 
@@ -569,5 +675,31 @@ impl<K: DepthKey, C: Compare> Sink for EyeSink<'_, K, C> {
         self.keys[index] = merged;
         self.triangles[index] = select(pass, triangle, self.triangles[index]);
         u64::from(pass & 1)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A clear not yet carried out reads, and compares, as the value it will write.
+    #[test]
+    fn a_pending_clear_reads_and_compares_as_done() {
+        let size = TargetSize::new(70, 3).expect("a valid size");
+        let mut pending = TiledPlane::new(size, 7);
+        assert_eq!(pending.untile(size), vec![7; 210]);
+        let mut done = pending.clone();
+        let (groups, value) = done.groups_mut();
+        use rayon::prelude::*;
+        groups.for_each(|group| fill_pending(group, value));
+        assert_eq!(done.pending_clear, None);
+        assert_eq!(done.untile(size), vec![7; 210]);
+        assert_eq!(pending, done);
+        assert_eq!(done, pending);
+        pending.clear(8);
+        assert_ne!(pending, done);
+        assert_ne!(done, pending);
+        done.values[5] = 8;
+        assert_ne!(done, pending);
     }
 }
