@@ -60,13 +60,6 @@ pub(crate) struct TileRect {
     pub(crate) height: i64,
 }
 
-/// Pixel boxes of at most this many pixels (within the tile) are tested pixel by pixel: cheaper than
-/// setting up a block for the one or two centres a tiny triangle can cover.
-const SMALL: i64 = 4;
-
-/// The most pixels a box given to [`small_box_coverage`] may hold: one bit each in a `u32`.
-pub(crate) const MAX_SMALL_BOX: i64 = 32;
-
 /// Block side, in pixels: the lanes of one row.
 pub(crate) const BLOCK: usize = 8;
 /// [`BLOCK`] as a coordinate.
@@ -116,39 +109,9 @@ fn row_uncovered(values: &[i32x8; 3], outside: i32x8) -> Lanes<u32> {
     wide::bytemuck::cast(uncovered)
 }
 
-/// The covered pixel centres of a box of at most [`BLOCK`] columns and [`MAX_SMALL_BOX`] pixels,
-/// `columns` × `rows`, as a bit mask: bit `r·w + c` for column `columns.start() + c` and row
-/// `rows.start() + r`, `w` being the box's width. The path for boxes where a block would test
-/// mostly empty lanes: one row of lanes per box row, as in a block, and the rows' sign masks packed
-/// into one word.
-#[inline(always)]
-pub(crate) fn small_box_coverage(
-    edges: &[Edge; 3],
-    columns: RangeInclusive<i64>,
-    rows: RangeInclusive<i64>,
-) -> u32 {
-    let (i0, j0) = (*columns.start(), *rows.start());
-    let width = columns.end() - i0 + 1;
-    debug_assert!(width <= BLOCK_I64 && width * (rows.end() - j0 + 1) <= MAX_SMALL_BOX);
-    let mut values =
-        edges.map(|e| i32x8::splat(corner(e.at(i0, j0))) + COLUMNS * i32x8::splat(step(e.step_i)));
-    let row_steps = edges.map(|e| i32x8::splat(step(e.step_j)));
-    let in_box = (1 << width) - 1;
-    let mut covered = 0;
-    let mut shift = 0;
-    for _ in rows {
-        let uncovered = (values[0] | values[1] | values[2]).to_bitmask();
-        covered |= (!uncovered & in_box) << shift;
-        shift += width;
-        for (value, row_step) in values.iter_mut().zip(row_steps) {
-            *value += row_step;
-        }
-    }
-    covered
-}
-
-/// Calls `f(i, j, z)` for each pixel of a [`small_box_coverage`] mask, row by row from the bottom,
-/// with the depth the block path gives the same pixel.
+/// Calls `f(i, j, z)` for each pixel of a coverage mask of a box `columns` wide from row `j0` (bit
+/// `r·w + c` for column `columns.start() + c` and row `j0 + r`, `w` being the box's width), row by
+/// row from the bottom, with the depth the block path gives the same pixel.
 #[inline(always)]
 pub(crate) fn for_each_in_mask(
     mut covered: u32,
@@ -173,9 +136,11 @@ pub(crate) fn for_each_in_mask(
 }
 
 /// Sends the fragments of a counter-clockwise triangle (with doubled area `area`) that fall in
-/// `tile` (within the triangle's pixel box) to `sink`, row by row within blocks of 8 × 16. Returns the
-/// number that passed. The depth plane (a division) is set up only once a small box is known to
-/// cover some centre, as many of the tiny triangles of dense meshes do not.
+/// `tile` (within the triangle's pixel box) to `sink`, row by row within blocks of 8 × 16, or two
+/// rows at a time for boxes at most four pixels wide. Returns the number that passed. Boxes of one
+/// or two pixels take no special path here: binning draws those that lie in one tile (see
+/// `pipeline::EarlyFragment`), and a per-pixel path for boxes up to four pixels, measured after
+/// the two-row path came, cost 4 % of the dragon's light pass for its extra branch.
 #[inline]
 pub(crate) fn rasterize<S: Sink>(
     oriented: &[WindowVertex; 3],
@@ -193,24 +158,6 @@ pub(crate) fn rasterize<S: Sink>(
         return 0;
     }
     let edges = edges(oriented);
-    if (i1 - i0 + 1) * (j1 - j0 + 1) <= SMALL {
-        let mut passed = 0;
-        let covered = small_box_coverage(&edges, i0..=i1, j0..=j1);
-        if covered == 0 {
-            return 0;
-        }
-        let depth = DepthPlane::new(oriented, area);
-        for_each_in_mask(covered, &depth, i0..=i1, j0, |i, j, z| {
-            #[expect(
-                clippy::cast_sign_loss,
-                clippy::cast_possible_truncation,
-                reason = "the pixel lies inside the tile"
-            )]
-            let index = ((j - tile.y0) as usize) * TILE_STRIDE + (i - tile.x0) as usize;
-            passed += sink.fragment(index, z, triangle);
-        });
-        return passed;
-    }
     let depth = DepthPlane::new(oriented, area);
     if i1 - i0 < HALF_I64 {
         rasterize_narrow(&edges, &depth, i0..=i1, j0..=j1, tile, triangle, sink)
