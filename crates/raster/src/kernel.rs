@@ -49,6 +49,9 @@ pub(crate) trait TileKernel: Sync {
     /// Draws tiles `first..first + sinks.len()`, tile `first + k` into `sinks[k]`; returns the
     /// number of fragments that passed.
     fn run<S: Sink>(&self, first: usize, sinks: &mut [S]) -> u64;
+
+    /// A measure of the work in tiles `first..first + count`: what the scheduler orders groups by.
+    fn cost(&self, first: usize, count: usize) -> u64;
 }
 
 /// The pixel rectangle of a tile: first column and row, and size.

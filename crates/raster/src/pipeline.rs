@@ -675,6 +675,15 @@ impl TileKernel for Binned<'_> {
         }
         passed
     }
+
+    /// The entries binned to the tiles (a run of early fragments counting as one).
+    fn cost(&self, first: usize, count: usize) -> u64 {
+        let last = (first + count).min(self.size.tile_count());
+        self.chunks
+            .iter()
+            .map(|chunk| u64::from(chunk.starts[last] - chunk.starts[first]))
+            .sum()
+    }
 }
 
 impl Binned<'_> {
