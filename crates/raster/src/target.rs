@@ -89,34 +89,44 @@ impl TargetSize {
         self.width as usize * self.height as usize
     }
 
-    /// Converts tiled storage to a row-major image (row 0 at the bottom), leaving out the padding.
-    fn untile<T: Copy + Default>(&self, tiled: &[T]) -> Vec<T> {
+    /// Converts tiled storage to a row-major image (row 0 at the bottom), leaving out the padding;
+    /// tiles marked in `cleared` read as `clear_value` whatever they store.
+    fn untile<T: Copy + Default>(&self, tiled: &[T], cleared: &[bool], clear_value: T) -> Vec<T> {
         let (w, h) = (self.width as usize, self.height as usize);
         let mut out = vec![T::default(); self.pixel_count()];
         for (y, row) in out.chunks_mut(w).enumerate().take(h) {
             let ty = y / TILE_SIZE;
             let in_tile_row = (y % TILE_SIZE) * TILE_STRIDE;
             for (tx, span) in row.chunks_mut(TILE_SIZE).enumerate() {
-                let start = (ty * self.tiles_x + tx) * TILE_PIXELS + in_tile_row;
-                span.copy_from_slice(&tiled[start..start + span.len()]);
+                let tile = ty * self.tiles_x + tx;
+                if cleared[tile] {
+                    span.fill(clear_value);
+                } else {
+                    let start = tile * TILE_PIXELS + in_tile_row;
+                    span.copy_from_slice(&tiled[start..start + span.len()]);
+                }
             }
         }
         out
     }
 }
 
-/// One value per pixel, stored tile by tile, with a clear that is carried out by the next draw.
+/// One value per pixel, stored tile by tile, with clears carried out only where a draw writes.
 ///
-/// A clear only records its value; the next draw fills each tile with it just before drawing into
-/// the tile, while the tile is in that thread's cache, and readers see the value where no draw has
-/// filled it yet. That spares a separate pass over the whole target (a 2048² target is 19 MB with
-/// its padding) and, for a caller outside the rayon pool, a separate parallel job whose hand-over
-/// cost more than the fill itself on small targets (docs/benchmarks.md).
+/// A clear only records its value and marks every tile as holding it; a draw fills a marked tile
+/// just before drawing into it, while the tile is in that thread's cache, and tiles no triangle
+/// touches are never written at all (readers see the clear value there), as tile-based GPUs
+/// clear. That spares a separate pass over the whole target (a 2048² target is 19 MB with its
+/// padding, of which a mesh often touches a quarter), and, for a caller outside the rayon pool, a
+/// separate parallel job whose hand-over cost more than the fill itself on small targets
+/// (docs/benchmarks.md).
 #[derive(Clone, Debug)]
 struct TiledPlane {
     values: Vec<u32>,
-    /// The value every pixel holds if the last clear has not been carried out yet.
-    pending_clear: Option<u32>,
+    /// The value of the last clear.
+    clear_value: u32,
+    /// Per tile: whether it holds the last clear, not written to `values` yet.
+    cleared: Vec<bool>,
 }
 
 impl TiledPlane {
@@ -124,50 +134,80 @@ impl TiledPlane {
     fn new(size: TargetSize, value: u32) -> Self {
         Self {
             values: vec![0; size.tile_count() * TILE_PIXELS],
-            pending_clear: Some(value),
+            clear_value: value,
+            cleared: vec![true; size.tile_count()],
         }
     }
 
-    /// Sets every pixel to `value` (carried out by the next draw).
+    /// Sets every pixel to `value` (carried out where the next draws write).
     fn clear(&mut self, value: u32) {
-        self.pending_clear = Some(value);
+        self.clear_value = value;
+        self.cleared.fill(true);
+    }
+
+    /// The stored values with the cleared tiles filled in.
+    fn resolved(&self) -> std::borrow::Cow<'_, [u32]> {
+        if !self.cleared.contains(&true) {
+            return std::borrow::Cow::Borrowed(&self.values);
+        }
+        let mut values = self.values.clone();
+        for (tile, &cleared) in values.chunks_mut(TILE_PIXELS).zip(&self.cleared) {
+            if cleared {
+                tile.fill(self.clear_value);
+            }
+        }
+        std::borrow::Cow::Owned(values)
     }
 
     /// The values as a row-major image (row 0 at the bottom).
     fn untile(&self, size: TargetSize) -> Vec<u32> {
-        match self.pending_clear {
-            Some(value) => vec![value; size.pixel_count()],
-            None => size.untile(&self.values),
-        }
+        size.untile(&self.values, &self.cleared, self.clear_value)
     }
 
-    /// The groups of [`TILE_GROUP`] tiles a draw writes in parallel, and the clear each group
-    /// must carry out before drawing (see [`fill_pending`]). The clear counts as done from here.
-    fn groups_mut(&mut self) -> (std::slice::ChunksMut<'_, u32>, Option<u32>) {
-        let pending = self.pending_clear.take();
-        (self.values.chunks_mut(TILE_PIXELS * TILE_GROUP), pending)
-    }
-}
-
-/// Carries out a pending clear on a group of tiles.
-#[inline]
-fn fill_pending(values: &mut [u32], pending: Option<u32>) {
-    if let Some(value) = pending {
-        values.fill(value);
+    /// The groups of [`TILE_GROUP`] tiles a draw writes in parallel.
+    fn groups_mut(&mut self) -> impl Iterator<Item = PlaneGroup<'_>> {
+        let clear_value = self.clear_value;
+        self.values
+            .chunks_mut(TILE_PIXELS * TILE_GROUP)
+            .zip(self.cleared.chunks_mut(TILE_GROUP))
+            .map(move |(values, cleared)| PlaneGroup {
+                values,
+                cleared,
+                clear_value,
+            })
     }
 }
 
-/// Equal when every pixel holds the same value, whether cleared lazily or not.
+/// Equal when every pixel holds the same value, whether its tile was cleared lazily or not.
 impl PartialEq for TiledPlane {
     fn eq(&self, other: &Self) -> bool {
-        let all = |values: &[u32], value: u32| values.iter().all(|&v| v == value);
-        self.values.len() == other.values.len()
-            && match (self.pending_clear, other.pending_clear) {
-                (Some(a), Some(b)) => a == b,
-                (Some(a), None) => all(&other.values, a),
-                (None, Some(b)) => all(&self.values, b),
-                (None, None) => self.values == other.values,
+        self.resolved() == other.resolved()
+    }
+}
+
+/// One group's tiles of a [`TiledPlane`], as a draw gets them.
+struct PlaneGroup<'a> {
+    values: &'a mut [u32],
+    cleared: &'a mut [bool],
+    clear_value: u32,
+}
+
+impl<'a> PlaneGroup<'a> {
+    /// Writes the pending clear into the group's tiles that `kernel` draws into (tile `first + k`
+    /// being the group's `k`-th), and returns the tiles' storage.
+    fn prepare(self, kernel: &impl TileKernel, first: usize) -> std::slice::ChunksMut<'a, u32> {
+        for (k, (tile, cleared)) in self
+            .values
+            .chunks_mut(TILE_PIXELS)
+            .zip(self.cleared.iter_mut())
+            .enumerate()
+        {
+            if *cleared && kernel.cost(first + k, 1) > 0 {
+                tile.fill(self.clear_value);
+                *cleared = false;
             }
+        }
+        self.values.chunks_mut(TILE_PIXELS)
     }
 }
 
@@ -230,13 +270,11 @@ impl DepthTarget {
         compare: DepthCompare,
         kernel: &R,
     ) -> u64 {
-        let (groups, pending) = self.keys.groups_mut();
         draw_costliest_first(
-            groups.collect(),
+            self.keys.groups_mut().collect(),
             |g| kernel.cost(g * TILE_GROUP, TILE_GROUP),
             |g, keys| {
-                fill_pending(keys, pending);
-                let tiles = keys.chunks_mut(TILE_PIXELS);
+                let tiles = keys.prepare(kernel, g * TILE_GROUP);
                 // The common test gets its own loop, without a per-fragment branch.
                 if compare == DepthCompare::Less {
                     let mut sinks: Vec<_> = tiles
@@ -331,17 +369,16 @@ impl DepthPairTarget {
     /// Runs `kernel` on every group of [`TILE_GROUP`] tiles in parallel, with a sink per tile
     /// writing into that tile only; returns the number of fragments that passed.
     pub(crate) fn draw_tiles<K: DepthKey, R: TileKernel>(&mut self, kernel: &R) -> u64 {
-        let (nearest_groups, pending_nearest) = self.nearest.groups_mut();
-        let (second_groups, pending_second) = self.second.groups_mut();
         draw_costliest_first(
-            nearest_groups.zip(second_groups).collect(),
+            self.nearest
+                .groups_mut()
+                .zip(self.second.groups_mut())
+                .collect(),
             |g| kernel.cost(g * TILE_GROUP, TILE_GROUP),
             |g, (nearest, second)| {
-                fill_pending(nearest, pending_nearest);
-                fill_pending(second, pending_second);
                 let mut sinks: Vec<_> = nearest
-                    .chunks_mut(TILE_PIXELS)
-                    .zip(second.chunks_mut(TILE_PIXELS))
+                    .prepare(kernel, g * TILE_GROUP)
+                    .zip(second.prepare(kernel, g * TILE_GROUP))
                     .map(|(nearest, second)| PairSink::<K> {
                         nearest,
                         second,
@@ -422,17 +459,16 @@ impl EyeTarget {
         compare: DepthCompare,
         kernel: &R,
     ) -> u64 {
-        let (key_groups, pending_keys) = self.keys.groups_mut();
-        let (triangle_groups, pending_triangles) = self.triangles.groups_mut();
         draw_costliest_first(
-            key_groups.zip(triangle_groups).collect(),
+            self.keys
+                .groups_mut()
+                .zip(self.triangles.groups_mut())
+                .collect(),
             |g| kernel.cost(g * TILE_GROUP, TILE_GROUP),
             |g, (keys, triangles)| {
-                fill_pending(keys, pending_keys);
-                fill_pending(triangles, pending_triangles);
                 let tiles = keys
-                    .chunks_mut(TILE_PIXELS)
-                    .zip(triangles.chunks_mut(TILE_PIXELS));
+                    .prepare(kernel, g * TILE_GROUP)
+                    .zip(triangles.prepare(kernel, g * TILE_GROUP));
                 if compare == DepthCompare::Less {
                     let mut sinks: Vec<_> = tiles
                         .map(|(keys, triangles)| EyeSink::<K, Less> {
@@ -718,24 +754,30 @@ impl<K: DepthKey, C: Compare> Sink for EyeSink<'_, K, C> {
 mod tests {
     use super::*;
 
-    /// A clear not yet carried out reads, and compares, as the value it will write.
+    /// A clear not yet carried out reads, and compares, as the value it will write, tile by tile.
     #[test]
     fn a_pending_clear_reads_and_compares_as_done() {
-        let size = TargetSize::new(70, 3).expect("a valid size");
+        let size = TargetSize::new(130, 3).expect("a valid size");
         let mut pending = TiledPlane::new(size, 7);
-        assert_eq!(pending.untile(size), vec![7; 210]);
+        assert_eq!(pending.untile(size), vec![7; 390]);
         let mut done = pending.clone();
-        let (groups, value) = done.groups_mut();
-        groups.for_each(|group| fill_pending(group, value));
-        assert_eq!(done.pending_clear, None);
-        assert_eq!(done.untile(size), vec![7; 210]);
+        done.values.fill(7);
+        done.cleared.fill(false);
+        assert_eq!(done.untile(size), vec![7; 390]);
         assert_eq!(pending, done);
         assert_eq!(done, pending);
         pending.clear(8);
         assert_ne!(pending, done);
-        assert_ne!(done, pending);
-        done.values[5] = 8;
-        assert_ne!(done, pending);
+        // Tile 1 written, tiles 0 and 2 still cleared: each reads as what it holds.
+        pending.cleared[1] = false;
+        pending.values[TILE_PIXELS..2 * TILE_PIXELS].fill(9);
+        let image = pending.untile(size);
+        assert_eq!(&image[..64], &[8; 64]);
+        assert_eq!(&image[64..128], &[9; 64]);
+        assert_eq!(&image[128..130], &[8; 2]);
+        done.values.fill(8);
+        done.values[TILE_PIXELS..2 * TILE_PIXELS].fill(9);
+        assert_eq!(pending, done);
     }
 
     /// Every group is drawn once, whatever its cost and however many threads share the work.
