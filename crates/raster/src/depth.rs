@@ -87,15 +87,23 @@ pub(crate) struct Unorm24Key;
 /// [`DepthFormat::Unorm16`].
 pub(crate) struct Unorm16Key;
 
+/// The bits of 1.0f32: the largest F32 key.
+const F32_ONE_BITS: i32 = 0x3f80_0000;
+
 impl DepthKey for F32Key {
+    /// Rounds to f32 first and clamps the bits: the same key as rounding `z.clamp(0, 1)` (rounding
+    /// is monotone and keeps 0 and 1; every negative f32, −0 included, has the sign bit, so its bits
+    /// read as a negative i32, and non-negative f32s order as their bits), in two integer
+    /// operations on eight lanes where clamping in f64 took six on two halves. A depth of −0 gives
+    /// key 0 here, where the f64 clamp kept −0 and its bits.
     #[inline]
     fn encode(z: f64) -> u32 {
         #[expect(
             clippy::cast_possible_truncation,
             reason = "rounding to f32 is the format"
         )]
-        let stored = z.clamp(0.0, 1.0) as f32;
-        stored.to_bits()
+        let bits = (z as f32).to_bits().cast_signed();
+        bits.clamp(0, F32_ONE_BITS).cast_unsigned()
     }
 }
 
@@ -182,6 +190,42 @@ impl DepthCompare {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Rounding then clamping the bits gives what clamping then rounding gives, for depths in and
+    /// around [0, 1], at the boundaries, tiny, huge and infinite.
+    #[test]
+    fn f32_keys_round_then_clamp_as_clamp_then_round() {
+        #[expect(clippy::cast_possible_truncation, reason = "the format")]
+        let reference = |z: f64| (z.clamp(0.0, 1.0) as f32).to_bits();
+        let mut values = vec![
+            0.0,
+            1.0,
+            f64::MIN_POSITIVE,
+            -f64::MIN_POSITIVE,
+            1e-300,
+            -1e-300,
+            1.0 + f64::EPSILON,
+            1.0 - f64::EPSILON / 2.0,
+            1.0 + 1e-8,
+            f64::MAX,
+            f64::MIN,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+        ];
+        let mut state = 0x2545_f491_4f6c_dd1d_u64;
+        for _ in 0..200_000 {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            #[expect(clippy::cast_precision_loss, reason = "a random fraction")]
+            values.push((state >> 11) as f64 / (1u64 << 53) as f64 * 1.4 - 0.2);
+        }
+        for z in values {
+            assert_eq!(F32Key::encode(z), reference(z), "{z:e}");
+        }
+        // −0 is the one depth where they differ: the clamp keeps it, and its bits.
+        assert_eq!(F32Key::encode(-0.0), 0);
+    }
 
     #[test]
     fn keys_are_ordered_like_depths_in_every_format() {
