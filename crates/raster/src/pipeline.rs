@@ -410,9 +410,9 @@ enum Key {
 
 /// Runs a draw's phases on a thread of the current rayon pool. Called from outside the pool, each
 /// parallel phase would otherwise be sent to the pool separately while the calling thread sleeps,
-/// and each wake-up of the caller between phases cost time the pool's threads spent idle: measured
-/// 7 % of the bunny's eye pass on two threads (docs/benchmarks.md). Inside a pool, `f` runs where
-/// it is.
+/// and each wake-up of the caller between phases cost time the pool's threads spent idle (with
+/// clears carried out by the draw instead of a parallel job of their own: 6 % of the bunny's eye
+/// pass on two threads, docs/benchmarks.md). Inside a pool, `f` runs where it is.
 fn on_pool<R: Send>(f: impl FnOnce() -> R + Send) -> R {
     rayon::scope(|_| f())
 }
