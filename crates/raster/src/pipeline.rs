@@ -150,6 +150,8 @@ pub struct Rasterizer {
     window: Vec<WindowVertex>,
     codes: Vec<u8>,
     chunks: Vec<ChunkBins>,
+    /// Per tile, the entries binned to it by all chunks.
+    tile_entries: Vec<u32>,
 }
 
 /// A covered pixel of a tiny triangle, found while binning.
@@ -229,6 +231,8 @@ struct Binned<'a> {
     cull: CullMode,
     window: &'a [WindowVertex],
     chunks: &'a [ChunkBins],
+    /// Per tile, the entries binned to it by all chunks: what the tile groups are scheduled by.
+    tile_entries: &'a [u32],
 }
 
 impl Rasterizer {
@@ -391,11 +395,19 @@ impl Rasterizer {
         if let Some(error) = chunks.iter().find_map(|c| c.error.clone()) {
             return Err(error);
         }
+        self.tile_entries.clear();
+        self.tile_entries.resize(size.tile_count(), 0);
+        for chunk in chunks {
+            for (count, range) in self.tile_entries.iter_mut().zip(chunk.starts.windows(2)) {
+                *count += range[1] - range[0];
+            }
+        }
         Ok(Binned {
             size,
             cull: self.options.cull,
             window: &self.window,
             chunks,
+            tile_entries: &self.tile_entries,
         })
     }
 }
@@ -678,10 +690,10 @@ impl TileKernel for Binned<'_> {
 
     /// The entries binned to the tiles (a run of early fragments counting as one).
     fn cost(&self, first: usize, count: usize) -> u64 {
-        let last = (first + count).min(self.size.tile_count());
-        self.chunks
+        let last = (first + count).min(self.tile_entries.len());
+        self.tile_entries[first..last]
             .iter()
-            .map(|chunk| u64::from(chunk.starts[last] - chunk.starts[first]))
+            .map(|&entries| u64::from(entries))
             .sum()
     }
 }
