@@ -18,8 +18,8 @@
 //!   smooth one), so nothing is differenced across an edge, as neighbouring pixels would be.
 //! * `Du·t` for a projective map (every technique but the logarithmic one) exactly: with
 //!   `p = M·(X, 1)` and `ṗ = M·(t, 0)`, `d(p_k/p_w) = (ṗ_k p_w − p_k ṗ_w)/p_w²` — CG06 eq. 5; for the
-//!   logarithmic map by central differences along `t` on the plane, Richardson-extrapolated, with
-//!   a step of [`STEP`] times the point's distance from the eye (the map's own length scale).
+//!   logarithmic map by its closed-form derivative
+//!   (`shadowlab_shadow::logarithmic::LogarithmicMap::ndc_derivative`).
 //!
 //! # The footprint
 //! `J⁻¹` maps a texel step to a pixel step; the image of one texel on screen is (to first order)
@@ -65,13 +65,8 @@ use glam::{DMat2, DMat4, DVec2, DVec3};
 use rayon::prelude::*;
 use shadowlab_raster::{EyeImage, NO_TRIANGLE};
 use shadowlab_scene::Camera;
+use shadowlab_shadow::logarithmic::LogarithmicMap;
 use shadowlab_shadow::{LightSetup, ShadowMapping};
-
-/// Relative step of the central differences for non-projective maps, in units of the point's
-/// distance from the eye (as `shadowlab_shadow::measure` steps along the view axis): with
-/// Richardson extrapolation the truncation error is of order `STEP⁴` and the rounding error of
-/// order `ε/STEP`, both far below the 1e-6 the tests ask for.
-pub const STEP: f64 = 1e-3;
 
 /// Below this `cos β` (the surface within 0.057° of edge-on to the light's rays) a point has no
 /// footprint: a texel's shaft of light meets the surface along a line, `det J → 0` for every map,
@@ -104,22 +99,21 @@ struct Local {
 enum Prepared<'a> {
     /// World → GL clip space.
     Projective(DMat4),
-    /// Evaluated point by point and differenced.
-    General(&'a ShadowMapping),
+    /// The logarithmic map, differentiated in closed form.
+    Logarithmic(&'a LogarithmicMap),
 }
 
 impl<'a> Prepared<'a> {
     fn new(mapping: &'a ShadowMapping) -> Self {
-        match mapping.clip_from_world() {
-            Some(matrix) => Self::Projective(matrix),
-            None => Self::General(mapping),
+        match mapping {
+            ShadowMapping::Logarithmic(map) => Self::Logarithmic(map),
+            ShadowMapping::Projective { view, projection } => Self::Projective(*projection * *view),
         }
     }
 
     /// The derivative of the window coordinates `(x, y)` at `point` along `direction`
-    /// (`direction` per unit, window units); `scale` sets the difference step of a general map.
-    /// `None` where the mapping does not map the point (or a difference point).
-    fn derivative(&self, point: DVec3, direction: DVec3, scale: f64) -> Option<DVec2> {
+    /// (`direction` per unit, window units). `None` where the mapping does not map the point.
+    fn derivative(&self, point: DVec3, direction: DVec3) -> Option<DVec2> {
         match self {
             Self::Projective(m) => {
                 let (p, dp) = (*m * point.extend(1.0), *m * direction.extend(0.0));
@@ -130,20 +124,8 @@ impl<'a> Prepared<'a> {
                 let d = |k: usize| 0.5 * (dp[k] * p.w - p[k] * dp.w) / (p.w * p.w);
                 Some(DVec2::new(d(0), d(1)))
             }
-            Self::General(mapping) => {
-                let length = direction.length();
-                let unit = direction / length;
-                let at = |s: f64| {
-                    mapping
-                        .window(point + unit * s)
-                        .map(|w| DVec2::new(w.x, w.y))
-                };
-                let central = |h: f64| Some((at(h)? - at(-h)?) / (2.0 * h));
-                let h = STEP * scale;
-                // Richardson: (4·D(h/2) − D(h))/3 cancels the h² term.
-                let d = (central(0.5 * h)? * 4.0 - central(h)?) / 3.0;
-                Some(d * length)
-            }
+            // Window = (ndc + 1)/2.
+            Self::Logarithmic(map) => Some(map.ndc_derivative(point, direction)? * 0.5),
         }
     }
 }
@@ -172,9 +154,9 @@ fn local(
     let (t1, t2) = (on_plane(across), on_plane(up));
     let distance = to_point.length();
     let texels = f64::from(resolution);
-    let d1 = mapping.derivative(point, t1, distance)? * texels;
-    let d2 = mapping.derivative(point, t2, distance)? * texels;
-    let dn = mapping.derivative(point, n, distance)? * texels;
+    let d1 = mapping.derivative(point, t1)? * texels;
+    let d2 = mapping.derivative(point, t2)? * texels;
+    let dn = mapping.derivative(point, n)? * texels;
     // The light's ray: c·(t1, t2, n) with Du·(t1, t2, n)·c = 0, c ⟂ both rows of Du there.
     let c = DVec3::new(d1.x, d2.x, dn.x).cross(DVec3::new(d1.y, d2.y, dn.y));
     let ray = t1 * c.x + t2 * c.y + n * c.z;
