@@ -273,8 +273,24 @@ pub struct AliasingStats {
 /// of values only, not on their order. With no values, every field is 0.
 #[must_use]
 pub fn stats(values: impl Iterator<Item = f64>) -> AliasingStats {
-    let mut sorted: Vec<f64> = values.filter(|v| !v.is_nan()).collect();
-    sorted.sort_unstable_by(f64::total_cmp);
+    // Sorted as integers that order as `f64::total_cmp` orders the values (the key `total_cmp`
+    // itself compares): a third faster than sorting by the comparison (400 000 values: 5.4 against
+    // 8.0 ms), and a study sorts three sets per combination.
+    let mut keys: Vec<i64> = values
+        .filter(|v| !v.is_nan())
+        .map(|v| {
+            let bits = v.to_bits().cast_signed();
+            bits ^ ((bits >> 63).cast_unsigned() >> 1).cast_signed()
+        })
+        .collect();
+    keys.sort_unstable();
+    let sorted: Vec<f64> = keys
+        .into_iter()
+        .map(|key| {
+            let bits = key ^ ((key >> 63).cast_unsigned() >> 1).cast_signed();
+            f64::from_bits(bits.cast_unsigned())
+        })
+        .collect();
     let Some(&max) = sorted.last() else {
         return AliasingStats {
             max: 0.0,

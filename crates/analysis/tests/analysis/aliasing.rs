@@ -347,6 +347,27 @@ fn statistics_have_the_documented_values() {
     let forward = stats(tenths.iter().copied());
     let backward = stats(tenths.iter().rev().copied());
     assert_eq!(forward.mean.to_bits(), backward.mean.to_bits());
+    // Negative values, both zeros and infinities sort as `f64::total_cmp` sorts them.
+    let mixed = [
+        3.0,
+        -0.0,
+        0.0,
+        -2.5,
+        f64::INFINITY,
+        -1e300,
+        1e-300,
+        f64::NEG_INFINITY,
+        7.0,
+    ];
+    let mut reference = mixed.to_vec();
+    reference.sort_by(f64::total_cmp);
+    let s = stats(mixed.into_iter().cycle().take(900));
+    assert_eq!((s.max, s.p99, s.count), (f64::INFINITY, f64::INFINITY, 900));
+    let s = stats(mixed.into_iter().filter(|v| v.is_finite()));
+    assert_eq!(s.max.to_bits(), reference[7].to_bits());
+    assert_eq!(s.p99.to_bits(), reference[7].to_bits());
+    let s = stats([-0.0, 0.0].into_iter());
+    assert_eq!(s.max.to_bits(), 0.0f64.to_bits());
 }
 
 /// Claim: the footprints of a LiSPSM map and a logarithmic one of a ground with a box are
