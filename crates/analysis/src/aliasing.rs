@@ -240,16 +240,35 @@ pub fn footprints(
     eye: &EyeImage,
     camera: &Camera,
 ) -> Vec<Option<Footprint>> {
-    let mapping = Prepared::new(&setup.mapping);
+    footprints_served(&[(setup, resolution)], eye, camera, |_| Some(0))
+}
+
+/// [`footprints`] through one of several maps per pixel — `maps[k]` being a setup and its map
+/// side, `serving(pixel)` the index of the map that serves pixel `pixel` (`None`: no footprint):
+/// each pixel's footprint is computed once, through its own map, as a partitioned shadow looks it
+/// up.
+#[must_use]
+pub fn footprints_served(
+    maps: &[(&LightSetup, u32)],
+    eye: &EyeImage,
+    camera: &Camera,
+    serving: impl Fn(usize) -> Option<usize> + Sync,
+) -> Vec<Option<Footprint>> {
+    let mappings: Vec<(Prepared<'_>, u32)> = maps
+        .iter()
+        .map(|&(setup, resolution)| (Prepared::new(&setup.mapping), resolution))
+        .collect();
     eye.triangle
         .par_iter()
         .zip(&eye.position)
         .zip(&eye.normal)
-        .map(|((&triangle, &point), &normal)| {
+        .enumerate()
+        .map(|(pixel, ((&triangle, &point), &normal))| {
             if triangle == NO_TRIANGLE {
                 return None;
             }
-            footprint_of(&local(&mapping, resolution, camera, point, normal)?)
+            let (mapping, resolution) = mappings.get(serving(pixel)?)?;
+            footprint_of(&local(mapping, *resolution, camera, point, normal)?)
         })
         .collect()
 }

@@ -11,7 +11,7 @@ use shadowlab_shadow::{
 };
 use shadowlab_trace::Bvh;
 
-use crate::aliasing::{AliasingStats, Footprint, footprints, stats};
+use crate::aliasing::{AliasingStats, Footprint, footprints_served, stats};
 use crate::classify::{Misclassification, difference_image, misclassification};
 use crate::error::AnalysisError;
 use crate::images::{HeatScale, heatmap};
@@ -207,24 +207,26 @@ pub fn frame_footprints(
     eye: &EyeImage,
     shadows: &Shadows,
 ) -> Vec<Option<Footprint>> {
-    let mut per_pixel: Vec<Option<Footprint>> = vec![None; eye.triangle.len()];
-    if let Some(shadow) = shadows.lights.first() {
-        let view = scene_eye(scene);
-        let (e, v) = (view.pose.eye(), view.pose.forward());
-        let last = shadow.maps.len() - 1;
-        for (index, (partition, map)) in shadow.maps.iter().enumerate() {
-            let all = footprints(&map.setup, map.resolution, eye, &scene.camera);
-            for (pixel, value) in all.into_iter().enumerate() {
-                let depth = (eye.position[pixel] - e).dot(v);
-                // As the lookup: a partition serves depths from its near to the next one's.
-                let below_next = index == last || depth < shadow.maps[index + 1].0.near;
-                if (index == 0 || depth >= partition.near) && below_next {
-                    per_pixel[pixel] = value;
-                }
-            }
-        }
-    }
-    per_pixel
+    let Some(shadow) = shadows.lights.first() else {
+        return vec![None; eye.triangle.len()];
+    };
+    let view = scene_eye(scene);
+    let (e, v) = (view.pose.eye(), view.pose.forward());
+    let last = shadow.maps.len() - 1;
+    let maps: Vec<_> = shadow
+        .maps
+        .iter()
+        .map(|(_, map)| (&map.setup, map.resolution))
+        .collect();
+    footprints_served(&maps, eye, &scene.camera, |pixel| {
+        let depth = (eye.position[pixel] - e).dot(v);
+        // As the lookup: a partition serves depths from its near to the next one's (the last
+        // partition that does, should they overlap).
+        (0..=last).rev().find(|&index| {
+            let below_next = index == last || depth < shadow.maps[index + 1].0.near;
+            (index == 0 || depth >= shadow.maps[index].0.near) && below_next
+        })
+    })
 }
 
 /// Measures a combination's shadows against the truth.
