@@ -66,6 +66,7 @@ pub(crate) fn analyze(args: &AnalyzeArgs) -> Result<(), CliError> {
             .iter()
             .copied()
             .min_by_key(|r| r.abs_diff(1024)),
+        optimal: args.optimizer.options(),
     };
     let bar = progress_bar("analyze");
     let result = study::run(&scene, &options, |done, total| {

@@ -3,6 +3,7 @@
 use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
+use shadowlab_shadow::optimal::OptimalOptions;
 
 /// shadowlab: what a shadow-map technique costs and what it buys, with numbers.
 #[derive(Debug, Parser)]
@@ -77,6 +78,9 @@ pub(crate) struct AnalyzeArgs {
     /// Also compare the exact truth with a 4096² uniform map's, as Chong and Gortler's truth was.
     #[arg(long)]
     pub(crate) map_truth: bool,
+    /// The scene-optimized map's settings.
+    #[command(flatten)]
+    pub(crate) optimizer: OptimizerArgs,
     /// Directory to write into. Default: out/analyze/SCENE.
     #[arg(long)]
     pub(crate) out: Option<PathBuf>,
@@ -163,6 +167,9 @@ pub(crate) struct CompareArgs {
     /// The PNG to write.
     #[arg(long, default_value = "out/compare.png")]
     pub(crate) out: PathBuf,
+    /// The scene-optimized map's settings.
+    #[command(flatten)]
+    pub(crate) optimizer: OptimizerArgs,
 }
 
 fn parse_crop(text: &str) -> Result<[u32; 4], String> {
@@ -219,6 +226,9 @@ pub(crate) struct ShadowArgs {
     /// Depth format of the maps: f32, reversed-f32, unorm24, unorm16. Default: f32.
     #[arg(long)]
     pub(crate) format: Option<String>,
+    /// The scene-optimized map's settings.
+    #[command(flatten)]
+    pub(crate) optimizer: OptimizerArgs,
 }
 
 /// Arguments of `shadowlab render`.
@@ -348,4 +358,64 @@ fn figure_name(text: &str) -> Result<shadowlab_curves::FigureName, String> {
             .collect();
         format!("unknown figure; the figures are: {}", names.join(", "))
     })
+}
+
+/// The scene-optimized map's settings (technique `optimal`; CG06 Algorithm 1), for measuring what
+/// each costs and buys. Unset: the paper's (or shadowlab's documented) defaults.
+#[derive(Debug, Args)]
+pub(crate) struct OptimizerArgs {
+    /// Size of the optimizer's low-resolution eye pass, WIDTHxHEIGHT. Default: 70x70 (CG06 §4).
+    #[arg(long, value_name = "WxH", value_parser = parse_readback)]
+    pub(crate) optimal_readback: Option<(u32, u32)>,
+    /// Side of the initial (uniform-limited) map the samples' shadow states are read from, texels.
+    /// Default: 512.
+    #[arg(long, value_name = "TEXELS", value_parser = clap::value_parser!(u32).range(1..=16384))]
+    pub(crate) optimal_initial: Option<u32>,
+    /// The most iterations of the optimizer's descent (0: the initial fit only). Default: 3 (CG06 §4).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(0..=1000))]
+    pub(crate) optimal_iterations: Option<u32>,
+    /// The border around the samples, a fraction of the map's side in [0, 0.5). Default: 0.0625.
+    #[arg(long, value_name = "FRACTION", value_parser = parse_border)]
+    pub(crate) optimal_border: Option<f64>,
+}
+
+impl OptimizerArgs {
+    /// The settings, unset ones at their defaults; the step direction is the technique's.
+    pub(crate) fn options(&self) -> OptimalOptions {
+        let defaults = OptimalOptions::default();
+        OptimalOptions {
+            readback: self.optimal_readback.unwrap_or(defaults.readback),
+            initial_resolution: self.optimal_initial.unwrap_or(defaults.initial_resolution),
+            iterations: self
+                .optimal_iterations
+                .map_or(defaults.iterations, |n| n as usize),
+            border: self.optimal_border.unwrap_or(defaults.border),
+            direction: defaults.direction,
+        }
+    }
+}
+
+/// `WIDTHxHEIGHT`, each side 1 to 16384.
+fn parse_readback(value: &str) -> Result<(u32, u32), String> {
+    let side = |s: &str| {
+        s.trim()
+            .parse::<u32>()
+            .ok()
+            .filter(|v| (1..=16384).contains(v))
+            .ok_or_else(|| format!("{s:?} is not a side from 1 to 16384"))
+    };
+    let (w, h) = value
+        .split_once(['x', 'X'])
+        .ok_or_else(|| format!("{value:?} is not WIDTHxHEIGHT"))?;
+    Ok((side(w)?, side(h)?))
+}
+
+/// A fraction in [0, 0.5).
+fn parse_border(value: &str) -> Result<f64, String> {
+    value
+        .trim()
+        .parse::<f64>()
+        .ok()
+        .filter(|v| (0.0..0.5).contains(v))
+        .ok_or_else(|| format!("{value:?} is not a fraction in [0, 0.5)"))
 }

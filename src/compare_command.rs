@@ -50,6 +50,7 @@ pub(crate) fn run(args: &CompareArgs) -> Result<(), CliError> {
             splits: Splits::Uniform,
             lookup: Lookup::new(Bias::DEFAULT, Filter::Nearest),
             snap_texels: 0,
+            optimal: args.optimizer.options(),
         };
         let k = u32::try_from(k).unwrap_or(0);
         let (x, y) = (

@@ -84,7 +84,7 @@ pub(crate) fn run(args: &InspectArgs) -> Result<(), CliError> {
             let input = scene_input(scene, light, nearest, FocusPolicy::Scene).map_err(failed)?;
             let options = OptimalOptions {
                 direction,
-                ..OptimalOptions::default()
+                ..args.shadow.optimizer.options()
             };
             let (parts, light_reports): (Vec<_>, Vec<_>) = optimal::plan_partitions(
                 scene,
@@ -106,6 +106,7 @@ pub(crate) fn run(args: &InspectArgs) -> Result<(), CliError> {
                 resolved.splits,
                 resolved.partitions,
                 nearest,
+                &args.shadow.optimizer.options(),
             )
             .map_err(failed)?;
             lights.push(parts);

@@ -21,6 +21,7 @@ pub(crate) fn run(args: &RenderArgs) -> Result<(), CliError> {
         splits: resolved.splits,
         lookup: resolved.lookup.clone(),
         snap_texels: 0,
+        optimal: args.shadow.optimizer.options(),
     };
     let frame = render_frame(scene, &options)
         .map_err(|e| CliError::Input(format!("{} with {}: {e}", scene.name, options.technique)))?;

@@ -163,6 +163,32 @@ fn inspect_reports_the_optimizer() {
         text.contains("optimizer: ") && text.contains("samples ("),
         "{text}"
     );
+    // The optimizer's settings reach it: no iterations take no step, and a smaller read-back
+    // finds fewer samples.
+    let report = |extra: &[&str]| {
+        let mut command = vec![
+            "inspect",
+            "dueling-frusta",
+            "--technique",
+            "optimal",
+            "--json",
+        ];
+        command.extend_from_slice(extra);
+        let output = shadowlab(&command, None);
+        assert!(output.status.success(), "{}", stderr(&output));
+        let value: serde_json::Value = serde_json::from_str(&stdout(&output)).unwrap();
+        value["lights"][0]["partitions"][0]["optimizer"].clone()
+    };
+    let still = report(&["--optimal-iterations", "0"]);
+    assert_eq!(
+        still["steps_degrees"].as_array().map(Vec::len),
+        Some(0),
+        "{still}"
+    );
+    assert_eq!(still["h"], still["initial_h"], "{still}");
+    let samples = |r: &serde_json::Value| r["samples"]["boundary"].as_u64().unwrap();
+    let small = report(&["--optimal-readback", "35x35"]);
+    assert!(samples(&small) < samples(&report(&[])), "{small}");
 }
 
 #[test]
@@ -237,6 +263,24 @@ fn bad_input_exits_with_2_and_names_the_problem() {
                 "logarithmic".into(),
             ],
             "not defined",
+        ),
+        (
+            vec![
+                "inspect".into(),
+                "outdoor".into(),
+                "--optimal-border".into(),
+                "0.7".into(),
+            ],
+            "--optimal-border",
+        ),
+        (
+            vec![
+                "render".into(),
+                "outdoor".into(),
+                "--optimal-readback".into(),
+                "70".into(),
+            ],
+            "--optimal-readback",
         ),
         (
             vec![

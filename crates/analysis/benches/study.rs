@@ -34,6 +34,7 @@ fn default_options() -> StudyOptions {
         format: DepthFormat::F32,
         map_truth: false,
         pictures_at: None,
+        optimal: shadowlab_shadow::optimal::OptimalOptions::default(),
     }
 }
 

@@ -5,6 +5,7 @@ use std::time::{Duration, Instant};
 
 use shadowlab_raster::{DepthFormat, EyeImage, NO_TRIANGLE};
 use shadowlab_scene::Scene;
+use shadowlab_shadow::optimal::OptimalOptions;
 use shadowlab_shadow::{
     Bias, Filter, FrameOptions, Lookup, ShadowError, Shadows, Splits, Technique, eye_pass,
     render_shadows, scene_eye,
@@ -43,6 +44,8 @@ pub struct StudyOptions {
     /// Keep pictures (footprint heat map, difference image) of each technique at this resolution,
     /// with the first partition count and filter; `None`: no pictures.
     pub pictures_at: Option<u32>,
+    /// The scene-optimized map's settings (its step direction is the technique's).
+    pub optimal: OptimalOptions,
 }
 
 /// The pictures of one combination: rows from the bottom, like the eye image.
@@ -170,6 +173,7 @@ pub fn render(
             splits: options.splits,
             lookup: Lookup::new(options.bias, setting.filter),
             snap_texels: 0,
+            optimal: options.optimal,
         },
         &eye.image,
         eye.nearest_visible,

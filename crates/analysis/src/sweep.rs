@@ -92,6 +92,7 @@ pub fn sweep(
         format: shadowlab_raster::DepthFormat::F32,
         map_truth: false,
         pictures_at: None,
+        optimal: shadowlab_shadow::optimal::OptimalOptions::default(),
     };
     let mut points = Vec::new();
     let total = angles.len() * techniques.len();

@@ -5,6 +5,7 @@ use glam::{DQuat, DVec3};
 use shadowlab_hull::ViewPose;
 use shadowlab_raster::NO_TRIANGLE;
 use shadowlab_scene::Scene;
+use shadowlab_shadow::optimal::OptimalOptions;
 use shadowlab_shadow::{
     Bias, Filter, FrameOptions, Lookup, ShadowError, Splits, Technique, eye_pass, render_shadows,
 };
@@ -89,6 +90,7 @@ pub fn temporal(
                 splits: Splits::Uniform,
                 lookup: Lookup::new(Bias::DEFAULT, Filter::Nearest),
                 snap_texels: *snap,
+                optimal: OptimalOptions::default(),
             };
             match render_shadows(&moved, &options, &eye, nearest_visible, Some(&bvh)) {
                 Ok(shadows) => history.push(

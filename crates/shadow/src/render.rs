@@ -40,6 +40,9 @@ pub struct FrameOptions {
     /// Texel snapping against shimmer ([`crate::snap_to_texels`]): each map's window moved so the
     /// world origin falls on the corner of this many texels' grid; 0 leaves the windows alone.
     pub snap_texels: u32,
+    /// The scene-optimized map's settings (read-back size, initial map, iterations, border) when
+    /// the technique is [`Technique::Optimal`]; their step direction is the technique's.
+    pub optimal: OptimalOptions,
 }
 
 /// One light's shadow: its partitions and their maps.
@@ -155,8 +158,9 @@ pub fn scene_input(
 
 /// Plans one light of `scene`: `partitions` z-partitions split by `splits` (one: the whole view),
 /// each with `technique`, PSM's near plane at `nearest_visible_depth`. [`Technique::Optimal`] is
-/// planned from the scene itself with the default [`OptimalOptions`] but its step direction: a low-resolution eye pass,
-/// then each partition optimized on its own samples ([`crate::optimal::plan_partitions`]).
+/// planned from the scene itself with `optimal`'s settings and the technique's step direction: a
+/// low-resolution eye pass, then each partition optimized on its own samples
+/// ([`crate::optimal::plan_partitions`]); other techniques ignore `optimal`.
 ///
 /// # Errors
 /// As [`plan_partitions`] (or [`crate::optimal::plan_partitions`]); an invalid scene box.
@@ -167,12 +171,13 @@ pub fn plan_light(
     splits: Splits,
     partitions: usize,
     nearest_visible_depth: Option<f64>,
+    optimal: &OptimalOptions,
 ) -> Result<Vec<Partition>, ShadowError> {
     let input = scene_input(scene, light, nearest_visible_depth, FocusPolicy::Scene)?;
     if let Technique::Optimal(direction) = technique {
         let options = OptimalOptions {
             direction,
-            ..OptimalOptions::default()
+            ..*optimal
         };
         return Ok(
             optimal::plan_partitions(scene, &input, splits, partitions.max(1), &options)?
@@ -247,6 +252,7 @@ pub fn render_shadows(
             options.splits,
             options.partitions,
             nearest_visible,
+            &options.optimal,
         )?;
         if options.snap_texels > 0 {
             for partition in &mut partitions {

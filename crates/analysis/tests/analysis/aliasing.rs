@@ -404,6 +404,7 @@ fn footprints_are_the_same_on_any_thread_count() {
             shadowlab_shadow::Splits::Uniform,
             1,
             None,
+            &shadowlab_shadow::optimal::OptimalOptions::default(),
         )
         .unwrap_or_else(|e| panic!("{technique}: {e}"));
         let setup = &partitions[0].setup;

@@ -107,6 +107,7 @@ fn facing_away_shadows_only_through_occlusion_as_the_lookup_does() {
         Splits::Uniform,
         1,
         None,
+        &shadowlab_shadow::optimal::OptimalOptions::default(),
     )
     .unwrap()[0]
         .setup;

@@ -12,6 +12,7 @@ use std::path::PathBuf;
 
 use shadowlab_raster::DepthFormat;
 use shadowlab_scene::{BUILTIN_SCENES, builtin_scene};
+use shadowlab_shadow::optimal::OptimalOptions;
 use shadowlab_shadow::{
     Bias, Filter, FrameOptions, Lookup, ShadowError, Splits, StepDirection, Technique, render_frame,
 };
@@ -57,6 +58,7 @@ fn frames() -> String {
                 splits: Splits::Uniform,
                 lookup: Lookup::new(Bias::DEFAULT, Filter::Pcf { size: 3 }),
                 snap_texels: 0,
+                optimal: OptimalOptions::default(),
             };
             let line = match render_frame(&scene, &options) {
                 Ok(frame) => {

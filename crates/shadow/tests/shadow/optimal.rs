@@ -449,6 +449,7 @@ fn optimized_frames_render_and_look_up() {
             splits: Splits::Logarithmic,
             lookup: Lookup::new(Bias::DEFAULT, Filter::Pcf { size: 3 }),
             snap_texels: 0,
+            optimal: OptimalOptions::default(),
         };
         let frame = render_frame(&scene, &options).unwrap();
         let maps = &frame.lights[0].maps;
@@ -533,6 +534,7 @@ fn optimal_is_a_technique_planned_from_the_scene() {
         Splits::Uniform,
         1,
         None,
+        &OptimalOptions::default(),
     )
     .unwrap();
     assert_eq!(parts.len(), 1);
@@ -603,3 +605,45 @@ fn bad_options_are_refused_and_no_samples_keep_the_initial_map() {
 
 /// The paper's readback size, spelt out once for the tests.
 const READBACK: (u32, u32) = optimal::READBACK_SIZE;
+
+/// Claim: the optimizer's settings given to `plan_light` (read-back size, initial map, iterations,
+/// border) are the ones the optimizer runs with, and the step direction is the technique's, not
+/// the settings'.
+#[test]
+fn plan_light_plans_with_the_given_optimizer_settings() {
+    let mut scene = builtin_scene("dueling-frusta").unwrap();
+    (scene.camera.width, scene.camera.height) = (160, 120);
+    let settings = OptimalOptions {
+        readback: (40, 30),
+        initial_resolution: 128,
+        iterations: 1,
+        border: 0.1,
+        direction: StepDirection::Refitted,
+    };
+    let light = &scene.lights[0];
+    let planned = plan_light(
+        &scene,
+        light,
+        Technique::Optimal(StepDirection::Paper),
+        Splits::Uniform,
+        1,
+        None,
+        &settings,
+    )
+    .unwrap();
+    let input = scene_input(&scene);
+    let direct = |options: &OptimalOptions| -> Vec<_> {
+        optimal::plan_partitions(&scene, &input, Splits::Uniform, 1, options)
+            .unwrap()
+            .into_iter()
+            .map(|(partition, _)| partition)
+            .collect()
+    };
+    let paper = OptimalOptions {
+        direction: StepDirection::Paper,
+        ..settings
+    };
+    assert_eq!(planned, direct(&paper));
+    // The settings matter: the defaults plan another map.
+    assert_ne!(planned, direct(&OptimalOptions::default()));
+}
