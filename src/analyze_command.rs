@@ -82,12 +82,11 @@ pub(crate) fn analyze(args: &AnalyzeArgs) -> Result<(), CliError> {
         ("results.json".to_string(), report.json.into_bytes()),
         ("pareto.svg".to_string(), report.pareto_svg.into_bytes()),
         ("pareto.png".to_string(), report.pareto_png),
-        (
-            "view-axis.svg".to_string(),
-            report.view_axis_svg.into_bytes(),
-        ),
-        ("view-axis.png".to_string(), report.view_axis_png),
     ];
+    if let Some((svg, png)) = report.view_axis {
+        files.push(("view-axis.svg".to_string(), svg.into_bytes()));
+        files.push(("view-axis.png".to_string(), png));
+    }
     let (w, h) = (study.width, study.height);
     let failure = |e: shadowlab_raster::RasterError| CliError::Failure(anyhow::anyhow!("{e}"));
     for pictures in &study.pictures {

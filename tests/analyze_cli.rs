@@ -95,6 +95,38 @@ fn analyze_writes_the_report_and_repeats_its_results_exactly() {
     assert!(read(first.path(), "pareto.svg").starts_with("<svg"));
 }
 
+/// Claim: a study of techniques without a view-axis curve (the scene-optimized map alone, with
+/// its settings from the command line) writes its report and leaves the view-axis figure out
+/// instead of failing on an empty figure.
+#[test]
+fn analyze_without_view_axis_curves_leaves_that_figure_out() {
+    let scenes = tempfile::tempdir().unwrap();
+    let scene = scene_file(scenes.path());
+    let out = tempfile::tempdir().unwrap();
+    let output = shadowlab(
+        &[
+            "analyze",
+            &scene,
+            "--techniques",
+            "optimal",
+            "--resolutions",
+            "128",
+            "--optimal-iterations",
+            "1",
+            "--out",
+            out.path().to_str().unwrap(),
+        ],
+        None,
+    );
+    assert!(output.status.success(), "{}", stderr(&output));
+    for file in ["report.md", "results.csv", "pareto.svg"] {
+        assert!(out.path().join(file).is_file(), "{file} missing");
+    }
+    assert!(!out.path().join("view-axis.svg").exists());
+    let report = fs::read_to_string(out.path().join("report.md")).unwrap();
+    assert!(!report.contains("view-axis.png"), "{report}");
+}
+
 #[test]
 fn sweep_angle_reaches_gamma_zero_continuously() {
     let scenes = tempfile::tempdir().unwrap();

@@ -27,10 +27,10 @@ pub struct Report {
     pub pareto_svg: String,
     /// `pareto.png`.
     pub pareto_png: Vec<u8>,
-    /// `view-axis.svg`: the error along the view axis, measured over the closed form.
-    pub view_axis_svg: String,
-    /// `view-axis.png`.
-    pub view_axis_png: Vec<u8>,
+    /// `view-axis.svg` and `view-axis.png`: the error along the view axis, measured over the
+    /// closed form; `None` when no technique of the study has a view-axis curve (the
+    /// scene-optimized map and frustum limiting alone), so there is nothing to draw.
+    pub view_axis: Option<(String, Vec<u8>)>,
 }
 
 /// The technique's name in tables: its key, and LiSPSM's parameter after a slash.
@@ -67,16 +67,20 @@ pub fn report(study: &Study) -> Result<Report, AnalysisError> {
     let figure = pareto(study);
     let pareto_svg = shadowlab_plot::render_svg(&figure)?;
     let pareto_png = shadowlab_plot::render_png(&pareto_svg)?;
-    let view_axis_svg = shadowlab_plot::render_svg(&view_axis_figure(study))?;
-    let view_axis_png = shadowlab_plot::render_png(&view_axis_svg)?;
+    let view_axis = if study.view_axis.is_empty() {
+        None
+    } else {
+        let svg = shadowlab_plot::render_svg(&view_axis_figure(study))?;
+        let png = shadowlab_plot::render_png(&svg)?;
+        Some((svg, png))
+    };
     Ok(Report {
         markdown: markdown(study),
         csv: csv(study)?,
         json: serde_json::to_string_pretty(&json(study)).expect("plain data"),
         pareto_svg,
         pareto_png,
-        view_axis_svg,
-        view_axis_png,
+        view_axis,
     })
 }
 
