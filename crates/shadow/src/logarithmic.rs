@@ -83,8 +83,9 @@ impl LogarithmicMap {
     ///
     /// `Ẋ = 2·(q̇_x·w − q_x·ẇ)/(w²·(r − l))`,  `Ẏ = 2·τ̇/((λ + τ)·ln(1 + 1/λ))`,
     ///
-    /// the last with `λ·w` written `λ + τ`, which stays exact for λ near [`MIN_LAMBDA`] and for
-    /// λ → ∞ (where `ln(1 + 1/λ)` is `ln_1p`'s). `None` where `ndc` is `None`.
+    /// the last with `λ·w` written `λ + τ`, which stays exact for λ near its smallest allowed
+    /// value (1e-9) and for λ → ∞ (where `ln(1 + 1/λ)` is `ln_1p`'s). `None` where `ndc` is
+    /// `None`.
     #[must_use]
     pub fn ndc_derivative(&self, world: DVec3, direction: DVec3) -> Option<DVec2> {
         let h = self.world_to_light * world.extend(1.0);
