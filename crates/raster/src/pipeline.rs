@@ -21,7 +21,9 @@ use crate::clip::{ClippedTriangle, clip_triangle};
 use crate::depth::{DepthCompare, DepthFormat, F32Key, ReversedF32Key, Unorm16Key, Unorm24Key};
 use crate::error::RasterError;
 use crate::kernel::{BLOCK, HALF, Lanes, Sink, TileKernel, TileRect, for_each_in_mask, rasterize};
-use crate::target::{DepthPairTarget, DepthTarget, EyeTarget, TILE_SHIFT, TILE_STRIDE, TargetSize};
+use crate::target::{
+    DepthPairTarget, DepthTarget, EyeTarget, TILE_SHIFT, TILE_STRIDE, TargetSize, TileTarget,
+};
 use crate::triangle::{CullMode, DepthPlane, Edge, Verdict, classify, counter_clockwise, edges};
 use crate::vertex::{Viewport, WindowVertex, code, transform, transform_vertices};
 
@@ -258,19 +260,7 @@ impl Rasterizer {
         mesh: Triangles<'_>,
         clip_from_world: &DMat4,
     ) -> Result<DrawStats, RasterError> {
-        on_pool(|| {
-            let options = self.options;
-            let binned = self.bin(target.size(), mesh, clip_from_world)?;
-            let fragments = with_key(target.format(), |key| match key {
-                Key::F32 => target.draw_tiles::<F32Key, _>(options.compare, &binned),
-                Key::ReversedF32 => {
-                    target.draw_tiles::<ReversedF32Key, _>(options.compare, &binned)
-                }
-                Key::Unorm24 => target.draw_tiles::<Unorm24Key, _>(options.compare, &binned),
-                Key::Unorm16 => target.draw_tiles::<Unorm16Key, _>(options.compare, &binned),
-            });
-            Ok(binned.finish(fragments))
-        })
+        self.draw(target, mesh, clip_from_world)
     }
 
     /// Draws `mesh` into a target keeping the nearest and second-nearest depth of every pixel.
@@ -280,16 +270,7 @@ impl Rasterizer {
         mesh: Triangles<'_>,
         clip_from_world: &DMat4,
     ) -> Result<DrawStats, RasterError> {
-        on_pool(|| {
-            let binned = self.bin(target.size(), mesh, clip_from_world)?;
-            let fragments = with_key(target.format(), |key| match key {
-                Key::F32 => target.draw_tiles::<F32Key, _>(&binned),
-                Key::ReversedF32 => target.draw_tiles::<ReversedF32Key, _>(&binned),
-                Key::Unorm24 => target.draw_tiles::<Unorm24Key, _>(&binned),
-                Key::Unorm16 => target.draw_tiles::<Unorm16Key, _>(&binned),
-            });
-            Ok(binned.finish(fragments))
-        })
+        self.draw(target, mesh, clip_from_world)
     }
 
     /// Draws `mesh` into an eye target: depth and the visible triangle's index per pixel.
@@ -299,17 +280,28 @@ impl Rasterizer {
         mesh: Triangles<'_>,
         clip_from_world: &DMat4,
     ) -> Result<DrawStats, RasterError> {
+        self.draw(target, mesh, clip_from_world)
+    }
+
+    /// Steps 1–3 into any target, with the tile pass compiled once per depth format so that each
+    /// key has its own inner loop.
+    fn draw<T: TileTarget>(
+        &mut self,
+        target: &mut T,
+        mesh: Triangles<'_>,
+        clip_from_world: &DMat4,
+    ) -> Result<DrawStats, RasterError> {
         on_pool(|| {
-            let options = self.options;
-            let binned = self.bin(target.size(), mesh, clip_from_world)?;
-            let fragments = with_key(target.format(), |key| match key {
-                Key::F32 => target.draw_tiles::<F32Key, _>(options.compare, &binned),
-                Key::ReversedF32 => {
-                    target.draw_tiles::<ReversedF32Key, _>(options.compare, &binned)
+            let compare = self.options.compare;
+            let binned = self.bin(target.target_size(), mesh, clip_from_world)?;
+            let fragments = match target.depth_format() {
+                DepthFormat::F32 => target.draw_tiles::<F32Key, _>(compare, &binned),
+                DepthFormat::ReversedF32 => {
+                    target.draw_tiles::<ReversedF32Key, _>(compare, &binned)
                 }
-                Key::Unorm24 => target.draw_tiles::<Unorm24Key, _>(options.compare, &binned),
-                Key::Unorm16 => target.draw_tiles::<Unorm16Key, _>(options.compare, &binned),
-            });
+                DepthFormat::Unorm24 => target.draw_tiles::<Unorm24Key, _>(compare, &binned),
+                DepthFormat::Unorm16 => target.draw_tiles::<Unorm16Key, _>(compare, &binned),
+            };
             Ok(binned.finish(fragments))
         })
     }
@@ -412,14 +404,6 @@ impl Rasterizer {
     }
 }
 
-/// The four depth encodings, for choosing a compiled kernel once per draw.
-enum Key {
-    F32,
-    ReversedF32,
-    Unorm24,
-    Unorm16,
-}
-
 /// Runs a draw's phases on a thread of the current rayon pool. Called from outside the pool, each
 /// parallel phase would otherwise be sent to the pool separately while the calling thread sleeps,
 /// and each wake-up of the caller between phases cost time the pool's threads spent idle (with
@@ -427,15 +411,6 @@ enum Key {
 /// pass on two threads, docs/benchmarks.md). Inside a pool, `f` runs where it is.
 fn on_pool<R: Send>(f: impl FnOnce() -> R + Send) -> R {
     rayon::scope(|_| f())
-}
-
-fn with_key<R>(format: DepthFormat, f: impl FnOnce(Key) -> R) -> R {
-    f(match format {
-        DepthFormat::F32 => Key::F32,
-        DepthFormat::ReversedF32 => Key::ReversedF32,
-        DepthFormat::Unorm24 => Key::Unorm24,
-        DepthFormat::Unorm16 => Key::Unorm16,
-    })
 }
 
 impl ChunkBins {
@@ -795,13 +770,10 @@ mod tests {
     /// each centre, for edges of every slope and boxes on and off the triangles.
     #[test]
     fn early_coverage_matches_the_small_box_test() {
-        let mut state = 0x9e37_79b9_7f4a_7c15_u64;
+        let mut random = crate::test_random::XorShift::new(0x9e37_79b9_7f4a_7c15);
         let mut next = move |range: i64| {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
             #[expect(clippy::cast_possible_wrap, reason = "below 2^63")]
-            let v = (state % (2 * range.unsigned_abs() + 1)) as i64 - range;
+            let v = random.below(2 * range.unsigned_abs() + 1) as i64 - range;
             v
         };
         let mut covered = 0;

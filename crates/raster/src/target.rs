@@ -262,14 +262,30 @@ impl DepthTarget {
     }
 }
 
-impl DepthTarget {
+/// A target the tile pass draws into: what the draw call needs of each of the three.
+pub(crate) trait TileTarget: Send {
+    /// The target's size.
+    fn target_size(&self) -> TargetSize;
+
+    /// The depth format it stores.
+    fn depth_format(&self) -> DepthFormat;
+
     /// Runs `kernel` on every group of [`TILE_GROUP`] tiles in parallel, with a sink per tile
-    /// writing into that tile only; returns the number of fragments that passed.
-    pub(crate) fn draw_tiles<K: DepthKey, R: TileKernel>(
-        &mut self,
-        compare: DepthCompare,
-        kernel: &R,
-    ) -> u64 {
+    /// writing into that tile only; returns the number of fragments that passed. `compare` is the
+    /// depth test (a depth-pair target keeps the two nearest and ignores it).
+    fn draw_tiles<K: DepthKey, R: TileKernel>(&mut self, compare: DepthCompare, kernel: &R) -> u64;
+}
+
+impl TileTarget for DepthTarget {
+    fn target_size(&self) -> TargetSize {
+        self.size
+    }
+
+    fn depth_format(&self) -> DepthFormat {
+        self.format
+    }
+
+    fn draw_tiles<K: DepthKey, R: TileKernel>(&mut self, compare: DepthCompare, kernel: &R) -> u64 {
         draw_costliest_first(
             self.keys.groups_mut().collect(),
             |g| kernel.cost(g * TILE_GROUP, TILE_GROUP),
@@ -365,10 +381,16 @@ impl DepthPairTarget {
     }
 }
 
-impl DepthPairTarget {
-    /// Runs `kernel` on every group of [`TILE_GROUP`] tiles in parallel, with a sink per tile
-    /// writing into that tile only; returns the number of fragments that passed.
-    pub(crate) fn draw_tiles<K: DepthKey, R: TileKernel>(&mut self, kernel: &R) -> u64 {
+impl TileTarget for DepthPairTarget {
+    fn target_size(&self) -> TargetSize {
+        self.size
+    }
+
+    fn depth_format(&self) -> DepthFormat {
+        self.format
+    }
+
+    fn draw_tiles<K: DepthKey, R: TileKernel>(&mut self, _: DepthCompare, kernel: &R) -> u64 {
         draw_costliest_first(
             self.nearest
                 .groups_mut()
@@ -451,14 +473,16 @@ impl EyeTarget {
     }
 }
 
-impl EyeTarget {
-    /// Runs `kernel` on every group of [`TILE_GROUP`] tiles in parallel, with a sink per tile
-    /// writing into that tile only; returns the number of fragments that passed.
-    pub(crate) fn draw_tiles<K: DepthKey, R: TileKernel>(
-        &mut self,
-        compare: DepthCompare,
-        kernel: &R,
-    ) -> u64 {
+impl TileTarget for EyeTarget {
+    fn target_size(&self) -> TargetSize {
+        self.size
+    }
+
+    fn depth_format(&self) -> DepthFormat {
+        self.format
+    }
+
+    fn draw_tiles<K: DepthKey, R: TileKernel>(&mut self, compare: DepthCompare, kernel: &R) -> u64 {
         draw_costliest_first(
             self.keys
                 .groups_mut()
