@@ -212,13 +212,9 @@ mod tests {
             f64::INFINITY,
             f64::NEG_INFINITY,
         ];
-        let mut state = 0x2545_f491_4f6c_dd1d_u64;
+        let mut random = crate::test_random::XorShift::new(0x2545_f491_4f6c_dd1d);
         for _ in 0..200_000 {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            #[expect(clippy::cast_precision_loss, reason = "a random fraction")]
-            values.push((state >> 11) as f64 / (1u64 << 53) as f64 * 1.4 - 0.2);
+            values.push(random.fraction() * 1.4 - 0.2);
         }
         for z in values {
             assert_eq!(F32Key::encode(z), reference(z), "{z:e}");

@@ -379,13 +379,10 @@ mod tests {
     #[test]
     fn narrow_boxes_give_what_blocks_give() {
         use crate::triangle::counter_clockwise;
-        let mut state = 0x2545_f491_4f6c_dd1d_u64;
+        let mut random = crate::test_random::XorShift::new(0x2545_f491_4f6c_dd1d);
         let mut next = move |n: i64| {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
             #[expect(clippy::cast_possible_wrap, reason = "below n")]
-            let v = (state % n.unsigned_abs()) as i64;
+            let v = random.below(n.unsigned_abs()) as i64;
             v
         };
         let tile = TileRect {

@@ -51,6 +51,8 @@ pub mod image_out;
 mod kernel;
 mod pipeline;
 mod target;
+#[cfg(test)]
+mod test_random;
 mod triangle;
 mod vertex;
 

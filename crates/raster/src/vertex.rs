@@ -235,15 +235,8 @@ mod tests {
     /// outside untouched.
     #[test]
     fn four_lanes_match_the_scalar_stage() {
-        let mut state = 0x2545_f491_4f6c_dd1d_u64;
-        let mut next = move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            #[expect(clippy::cast_precision_loss, reason = "a random fraction")]
-            let unit = (state >> 11) as f64 / (1u64 << 53) as f64;
-            unit
-        };
+        let mut random = crate::test_random::XorShift::new(0x2545_f491_4f6c_dd1d);
+        let mut next = move || random.fraction();
         let special = [
             0.0,
             -0.0,
