@@ -295,20 +295,16 @@ pub fn stats(values: impl Iterator<Item = f64>) -> AliasingStats {
     // Sorted as integers that order as `f64::total_cmp` orders the values (the key `total_cmp`
     // itself compares): a third faster than sorting by the comparison (400 000 values: 5.4 against
     // 8.0 ms), and a study sorts three sets per combination.
+    // The map between bits and keys flips the magnitude bits of negatives; it is its own inverse.
+    let flip = |bits: i64| bits ^ ((bits >> 63).cast_unsigned() >> 1).cast_signed();
     let mut keys: Vec<i64> = values
         .filter(|v| !v.is_nan())
-        .map(|v| {
-            let bits = v.to_bits().cast_signed();
-            bits ^ ((bits >> 63).cast_unsigned() >> 1).cast_signed()
-        })
+        .map(|v| flip(v.to_bits().cast_signed()))
         .collect();
     keys.sort_unstable();
     let sorted: Vec<f64> = keys
         .into_iter()
-        .map(|key| {
-            let bits = key ^ ((key >> 63).cast_unsigned() >> 1).cast_signed();
-            f64::from_bits(bits.cast_unsigned())
-        })
+        .map(|key| f64::from_bits(flip(key).cast_unsigned()))
         .collect();
     let Some(&max) = sorted.last() else {
         return AliasingStats {
