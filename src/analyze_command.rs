@@ -12,7 +12,9 @@ use shadowlab_shadow::{Bias, Filter, Splits};
 use crate::args::{AnalyzeArgs, StudyView, SweepArgs, TemporalArgs};
 use crate::error::CliError;
 use crate::output::{ensure_directory, print_line, write_atomic};
-use crate::shadow_settings::{load_scene_argument, parse_techniques};
+use crate::shadow_settings::{
+    load_scene_argument, optimizer_flags, parse_techniques, technique_list,
+};
 
 /// A progress bar on standard error, drawn only when it is a terminal.
 fn progress_bar(what: &str) -> ProgressBar {
@@ -40,7 +42,7 @@ fn write_all(dir: &Path, files: &[(String, Vec<u8>)]) -> Result<(), CliError> {
 
 pub(crate) fn analyze(args: &AnalyzeArgs) -> Result<(), CliError> {
     let scene = load_scene_argument(args.scene.as_deref())?;
-    let techniques = parse_techniques(&args.techniques, "--techniques")?;
+    let techniques = technique_list(&args.techniques, &args.stated)?;
     let filters = args
         .filters
         .iter()
@@ -66,7 +68,8 @@ pub(crate) fn analyze(args: &AnalyzeArgs) -> Result<(), CliError> {
             .iter()
             .copied()
             .min_by_key(|r| r.abs_diff(1024)),
-        optimal: args.optimizer.options(),
+        optimal: optimizer_flags(&args.optimizer)?,
+        focus: args.focus,
     };
     let bar = progress_bar("analyze");
     let result = study::run(&scene, &options, |done, total| {

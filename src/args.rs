@@ -3,7 +3,9 @@
 use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
-use shadowlab_shadow::optimal::OptimalOptions;
+use shadowlab_raster::MAX_TARGET_SIZE;
+use shadowlab_shadow::FocusPolicy;
+use shadowlab_shadow::optimal::{BORDER, INITIAL_MAP_RESOLUTION, ITERATIONS, READBACK_SIZE};
 
 /// shadowlab: what a shadow-map technique costs and what it buys, with numbers.
 #[derive(Debug, Parser)]
@@ -59,7 +61,7 @@ pub(crate) struct AnalyzeArgs {
     #[arg(long, value_delimiter = ',', default_value = ALL_TECHNIQUES)]
     pub(crate) techniques: Vec<String>,
     /// Shadow-map sides, comma-separated (Chong and Gortler's: 750 to 2000).
-    #[arg(long, value_delimiter = ',', default_value = "750,1000,1250,1500,1750,2000", value_parser = clap::value_parser!(u32).range(1..=16384))]
+    #[arg(long, value_delimiter = ',', default_value = "750,1000,1250,1500,1750,2000", value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_TARGET_SIZE)))]
     pub(crate) resolutions: Vec<u32>,
     /// Partition counts, comma-separated.
     #[arg(long, value_delimiter = ',', default_value = "1", value_parser = clap::value_parser!(u32).range(1..=16))]
@@ -78,6 +80,12 @@ pub(crate) struct AnalyzeArgs {
     /// Also compare the exact truth with a 4096² uniform map's, as Chong and Gortler's truth was.
     #[arg(long)]
     pub(crate) map_truth: bool,
+    /// Stated warps measured beside the techniques.
+    #[command(flatten)]
+    pub(crate) stated: StatedWarps,
+    /// The focus body B of every map.
+    #[arg(long, value_parser = FocusPolicy::parse, default_value = "light", help = FOCUS_HELP)]
+    pub(crate) focus: FocusPolicy,
     /// The scene-optimized map's settings.
     #[command(flatten)]
     pub(crate) optimizer: OptimizerArgs,
@@ -86,11 +94,29 @@ pub(crate) struct AnalyzeArgs {
     pub(crate) out: Option<PathBuf>,
 }
 
+/// What `--focus` chooses.
+const FOCUS_HELP: &str = "The focus body B each map is fitted to: light (B = conv(V ∪ l) ∩ S ∩ L, \
+    every occluder of a visible point), view-scene (V ∩ S), view (V alone, the papers' 2-D model)";
+
+/// LiSPSM maps at stated warps, added to a technique list (`compare`, `analyze`); the logarithmic
+/// map's reference is stated in the list itself (`logarithmic:lambda=L`).
+#[derive(Debug, Args)]
+pub(crate) struct StatedWarps {
+    /// Also LiSPSM at each of these λ = n/d (comma-separated; inf: the uniform map), as
+    /// `lispsm:lambda=L` in the list would.
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
+    pub(crate) lambda: Vec<f64>,
+    /// Also LiSPSM at each of these warp near distances n (light-space units: world units for a
+    /// directional light), as `lispsm:n=N` in the list would.
+    #[arg(long = "n", value_delimiter = ',', allow_hyphen_values = true)]
+    pub(crate) near_distance: Vec<f64>,
+}
+
 /// The map size and eye image of `sweep-angle` and `temporal`.
 #[derive(Debug, Args)]
 pub(crate) struct StudyView {
     /// Shadow-map side.
-    #[arg(long, default_value_t = 1024, value_parser = clap::value_parser!(u32).range(1..=16384))]
+    #[arg(long, default_value_t = 1024, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_TARGET_SIZE)))]
     pub(crate) resolution: u32,
     /// Eye image size, WIDTHxHEIGHT (default: the scene's).
     #[arg(long, value_parser = parse_size)]
@@ -155,7 +181,7 @@ pub(crate) struct CompareArgs {
     )]
     pub(crate) techniques: Vec<String>,
     /// Shadow-map side in texels.
-    #[arg(long, default_value_t = 1024, value_parser = clap::value_parser!(u32).range(1..=16384))]
+    #[arg(long, default_value_t = 1024, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_TARGET_SIZE)))]
     pub(crate) resolution: u32,
     /// The part of the eye image to show, `X,Y,WIDTH,HEIGHT` in pixels from the top left. Default:
     /// the whole image.
@@ -164,6 +190,12 @@ pub(crate) struct CompareArgs {
     /// Pictures per row.
     #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u32).range(1..=16))]
     pub(crate) columns: u32,
+    /// Stated warps shown beside the techniques.
+    #[command(flatten)]
+    pub(crate) stated: StatedWarps,
+    /// The focus body B of every map.
+    #[arg(long, value_parser = FocusPolicy::parse, default_value = "light", help = FOCUS_HELP)]
+    pub(crate) focus: FocusPolicy,
     /// The PNG to write.
     #[arg(long, default_value = "out/compare.png")]
     pub(crate) out: PathBuf,
@@ -200,13 +232,27 @@ pub(crate) struct ShadowArgs {
     /// The technique: uniform, uniform_limited, psm, lispsm, logarithmic, optimal. Default: lispsm.
     #[arg(long)]
     pub(crate) technique: Option<String>,
-    /// LiSPSM's parameter: lispsm (the paper's n_opt/sin γ, default), lispsm_dz, cad, cad_eq17,
-    /// cad_sin2, gmnpr, glpr, minimax, uniform; or an engine's: filament, ogre, osg, authors2006,
-    /// osg_vdsm. For optimal, the step: paper (default) or refit.
-    #[arg(long = "param")]
+    /// LiSPSM's parameter: lispsm (the paper's n = (z_n + √(z_n·z_f))/sin γ, default), lispsm_dz,
+    /// cad, cad_eq17, cad_sin2, gmnpr, glpr, minimax, uniform, model (shadowlab's λ transfer); or
+    /// an engine's: filament, ogre, osg, authors2006, osg_vdsm. For logarithmic, the reference
+    /// point: eye (default) or faces (Lloyd et al.'s face partitioning). For optimal, the step:
+    /// paper (default) or refit.
+    #[arg(long = "param", conflicts_with_all = ["lambda", "near_distance"])]
     pub(crate) parameter: Option<String>,
+    /// λ = n/d instead of --param: LiSPSM's warp, or where the logarithmic map's reference point
+    /// lies (inf: the uniform map).
+    #[arg(long, allow_hyphen_values = true, conflicts_with = "near_distance")]
+    pub(crate) lambda: Option<f64>,
+    /// The warp near distance n instead of --param (light-space units: world units for a
+    /// directional light).
+    #[arg(long = "n", allow_hyphen_values = true)]
+    pub(crate) near_distance: Option<f64>,
+    /// The focus body B each map is fitted to: light (B = conv(V ∪ l) ∩ S ∩ L, default),
+    /// view-scene (V ∩ S), view (V alone, the papers' 2-D model).
+    #[arg(long, value_parser = FocusPolicy::parse)]
+    pub(crate) focus: Option<FocusPolicy>,
     /// Shadow-map side in texels. Default: 1024.
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=16384))]
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_TARGET_SIZE)))]
     pub(crate) resolution: Option<u32>,
     /// Number of z-partitions (one map each). Default: 1.
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=16))]
@@ -265,7 +311,7 @@ pub(crate) struct RenderMeshArgs {
     #[arg(long)]
     pub(crate) eye: bool,
     /// Side of the light pass's square target, in pixels.
-    #[arg(long, default_value_t = 2048, value_parser = clap::value_parser!(u32).range(1..=16384))]
+    #[arg(long, default_value_t = 2048, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_TARGET_SIZE)))]
     pub(crate) size: u32,
     /// Size of the eye pass's target, WIDTHxHEIGHT.
     #[arg(long, default_value = "1024x768", value_parser = parse_size)]
@@ -283,15 +329,17 @@ pub(crate) struct RenderMeshArgs {
     pub(crate) out: PathBuf,
 }
 
-fn parse_size(text: &str) -> Result<(u32, u32), String> {
+/// `WIDTHxHEIGHT`, each side 1 to [`MAX_TARGET_SIZE`]: the one size parser of every flag.
+pub(crate) fn parse_size(text: &str) -> Result<(u32, u32), String> {
     let (w, h) = text
-        .split_once('x')
-        .ok_or("expected WIDTHxHEIGHT, e.g. 1024x768")?;
+        .split_once(['x', 'X'])
+        .ok_or_else(|| format!("{text:?} is not WIDTHxHEIGHT, e.g. 1024x768"))?;
     let side = |s: &str| {
-        s.parse::<u32>()
+        s.trim()
+            .parse::<u32>()
             .ok()
-            .filter(|v| (1..=16384).contains(v))
-            .ok_or_else(|| format!("{s:?} is not a size between 1 and 16384"))
+            .filter(|v| (1..=MAX_TARGET_SIZE).contains(v))
+            .ok_or_else(|| format!("{s:?} is not a size between 1 and {MAX_TARGET_SIZE}"))
     };
     Ok((side(w)?, side(h)?))
 }
@@ -361,61 +409,52 @@ fn figure_name(text: &str) -> Result<shadowlab_curves::FigureName, String> {
 }
 
 /// The scene-optimized map's settings (technique `optimal`; CG06 Algorithm 1), for measuring what
-/// each costs and buys. Unset: the paper's (or shadowlab's documented) defaults.
+/// each costs and buys. Unset: the scene's `[shadow]` table (render, inspect), then the paper's (or
+/// shadowlab's documented) defaults.
 #[derive(Debug, Args)]
 pub(crate) struct OptimizerArgs {
-    /// Size of the optimizer's low-resolution eye pass, WIDTHxHEIGHT. Default: 70x70 (CG06 §4).
-    #[arg(long, value_name = "WxH", value_parser = parse_readback)]
+    /// Size of the optimizer's low-resolution eye pass, WIDTHxHEIGHT.
+    #[arg(long, value_name = "WxH", value_parser = parse_size, help = format!(
+        "Size of the optimizer's low-resolution eye pass, WIDTHxHEIGHT. Default: {}x{} (CG06 §4)",
+        READBACK_SIZE.0, READBACK_SIZE.1
+    ))]
     pub(crate) optimal_readback: Option<(u32, u32)>,
-    /// Side of the initial (uniform-limited) map the samples' shadow states are read from, texels.
-    /// Default: 512.
-    #[arg(long, value_name = "TEXELS", value_parser = clap::value_parser!(u32).range(1..=16384))]
+    /// Side of the initial map.
+    #[arg(long, value_name = "TEXELS", value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_TARGET_SIZE)), help = format!(
+        "Side of the initial (uniform-limited) map the samples' shadow states are read from, \
+         texels. Default: {INITIAL_MAP_RESOLUTION}"
+    ))]
     pub(crate) optimal_initial: Option<u32>,
-    /// The most iterations of the optimizer's descent (0: the initial fit only). Default: 3 (CG06 §4).
-    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(0..=1000))]
+    /// The most iterations.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(0..=i64::from(MAX_OPTIMAL_ITERATIONS)), help = format!(
+        "The most iterations of the optimizer's descent (0: the initial fit only). Default: \
+         {ITERATIONS} (CG06 §4)"
+    ))]
     pub(crate) optimal_iterations: Option<u32>,
-    /// The border around the samples, a fraction of the map's side in [0, 0.5). Default: 0.0625.
-    #[arg(long, value_name = "FRACTION", value_parser = parse_border)]
+    /// The border.
+    #[arg(long, value_name = "FRACTION", value_parser = parse_border, help = format!(
+        "The border around the samples, a fraction of the map's side in [0, 0.5). Default: {BORDER}"
+    ))]
     pub(crate) optimal_border: Option<f64>,
-}
-
-impl OptimizerArgs {
-    /// The settings, unset ones at their defaults; the step direction is the technique's.
-    pub(crate) fn options(&self) -> OptimalOptions {
-        let defaults = OptimalOptions::default();
-        OptimalOptions {
-            readback: self.optimal_readback.unwrap_or(defaults.readback),
-            initial_resolution: self.optimal_initial.unwrap_or(defaults.initial_resolution),
-            iterations: self
-                .optimal_iterations
-                .map_or(defaults.iterations, |n| n as usize),
-            border: self.optimal_border.unwrap_or(defaults.border),
-            direction: defaults.direction,
-        }
-    }
-}
-
-/// `WIDTHxHEIGHT`, each side 1 to 16384.
-fn parse_readback(value: &str) -> Result<(u32, u32), String> {
-    let side = |s: &str| {
-        s.trim()
-            .parse::<u32>()
-            .ok()
-            .filter(|v| (1..=16384).contains(v))
-            .ok_or_else(|| format!("{s:?} is not a side from 1 to 16384"))
-    };
-    let (w, h) = value
-        .split_once(['x', 'X'])
-        .ok_or_else(|| format!("{value:?} is not WIDTHxHEIGHT"))?;
-    Ok((side(w)?, side(h)?))
 }
 
 /// A fraction in [0, 0.5).
 fn parse_border(value: &str) -> Result<f64, String> {
-    value
+    let fraction = value
         .trim()
         .parse::<f64>()
-        .ok()
-        .filter(|v| (0.0..0.5).contains(v))
-        .ok_or_else(|| format!("{value:?} is not a fraction in [0, 0.5)"))
+        .map_err(|_| format!("{value:?} is not a number"))?;
+    border_fraction(fraction)
 }
+
+/// A border fraction in `[0, 0.5)`.
+pub(crate) fn border_fraction(value: f64) -> Result<f64, String> {
+    if (0.0..0.5).contains(&value) {
+        Ok(value)
+    } else {
+        Err(format!("{value} is not a fraction in [0, 0.5)"))
+    }
+}
+
+/// The most descent iterations a user may ask of the optimizer.
+pub(crate) const MAX_OPTIMAL_ITERATIONS: u32 = 1000;

@@ -3,14 +3,14 @@
 use anyhow::Context;
 use shadowlab_raster::{DepthFormat, NO_TRIANGLE};
 use shadowlab_shadow::{
-    Bias, Filter, FrameOptions, Lookup, ShadowError, Splits, render_frame, view,
+    Bias, Filter, FrameOptions, Lookup, PlanOptions, ShadowError, render_frame, view,
 };
 use tiny_skia::{Color, Pixmap, PixmapPaint, Transform};
 
 use crate::args::CompareArgs;
 use crate::error::CliError;
 use crate::output::{print_line, write_atomic};
-use crate::shadow_settings::{load_scene_argument, parse_techniques};
+use crate::shadow_settings::{load_scene_argument, optimizer_flags, technique_list};
 
 /// Height of a picture's label, in pixels.
 const LABEL_HEIGHT: u32 = 30;
@@ -26,7 +26,8 @@ pub(crate) fn run(args: &CompareArgs) -> Result<(), CliError> {
             "invalid --crop: {cw}x{ch} at ({cx}, {cy}) does not fit the {width}x{height} image"
         )));
     }
-    let techniques = parse_techniques(&args.techniques, "--techniques")?;
+    let techniques = technique_list(&args.techniques, &args.stated)?;
+    let optimal = optimizer_flags(&args.optimizer)?;
     let columns = args
         .columns
         .min(u32::try_from(techniques.len()).unwrap_or(1))
@@ -43,14 +44,15 @@ pub(crate) fn run(args: &CompareArgs) -> Result<(), CliError> {
     canvas.fill(Color::WHITE);
     for (k, technique) in techniques.iter().enumerate() {
         let options = FrameOptions {
-            technique: *technique,
+            plan: PlanOptions {
+                focus: args.focus,
+                optimal,
+                ..PlanOptions::new(*technique)
+            },
             resolution: args.resolution,
             format: DepthFormat::F32,
-            partitions: 1,
-            splits: Splits::Uniform,
             lookup: Lookup::new(Bias::DEFAULT, Filter::Nearest),
             snap_texels: 0,
-            optimal: args.optimizer.options(),
         };
         let k = u32::try_from(k).unwrap_or(0);
         let (x, y) = (

@@ -4,8 +4,7 @@ use glam::{DMat4, DVec3};
 use serde_json::{Value, json};
 use shadowlab_shadow::optimal::{self, OptimalOptions, OptimalReport};
 use shadowlab_shadow::{
-    FocusPolicy, LightSetup, ShadowError, ShadowMapping, Technique, eye_pass, plan_light,
-    scene_input,
+    LightSetup, ShadowError, ShadowMapping, Technique, eye_pass, plan_light, scene_input,
 };
 
 use crate::args::InspectArgs;
@@ -51,13 +50,18 @@ fn setup_json(setup: &LightSetup) -> Value {
         }
         ShadowMapping::Logarithmic(_) => (Value::Null, Value::Null),
     };
+    let warp = setup.warp.as_ref();
     json!({
         "technique": setup.technique.to_string(),
         "gamma_degrees": setup.gamma.to_degrees(),
         "half_fov_degrees": setup.half_fov.to_degrees(),
-        "lambda": setup.warp.map(|w| number(w.lambda)),
-        "n": setup.warp.map(|w| number(w.near_distance)),
-        "warp_depth": setup.warp.map(|w| w.depth),
+        "lambda": warp.map(|w| number(w.lambda)),
+        "n": warp.map(|w| number(w.near_distance)),
+        "warp_depth": warp.map(|w| w.depth),
+        "rule": warp.map(|w| json!({
+            "formula": w.formula,
+            "inputs": w.inputs.iter().map(|(name, value)| (name.to_string(), number(*value))).collect::<serde_json::Map<_, _>>(),
+        })),
         "psm": setup.psm.map(|p| json!({"shift": p.shift, "near": p.near, "inverted": p.inverted, "directional": p.directional})),
         "focus_body": setup.focus_body.iter().map(|v| vector(*v)).collect::<Vec<_>>(),
         "view": view,
@@ -73,24 +77,25 @@ pub(crate) fn run(args: &InspectArgs) -> Result<(), CliError> {
     let mut lights = Vec::new();
     // Per light, the optimizer's report per partition (the scene-optimized map only).
     let mut reports: Vec<Vec<OptimalReport>> = Vec::new();
+    let plan = &resolved.plan;
     for (l, light) in scene.lights.iter().enumerate() {
         let failed = |e: ShadowError| {
             CliError::Input(format!(
                 "{} with {}, light {l}: {e}",
-                scene.name, resolved.technique
+                scene.name, plan.technique
             ))
         };
-        if let Technique::Optimal(direction) = resolved.technique {
-            let input = scene_input(scene, light, nearest, FocusPolicy::Scene).map_err(failed)?;
+        if let Technique::Optimal(direction) = plan.technique {
+            let input = scene_input(scene, light, nearest, plan.focus).map_err(failed)?;
             let options = OptimalOptions {
                 direction,
-                ..args.shadow.optimizer.options()
+                ..plan.optimal
             };
             let (parts, light_reports): (Vec<_>, Vec<_>) = optimal::plan_partitions(
                 scene,
                 &input,
-                resolved.splits,
-                resolved.partitions.max(1),
+                plan.splits,
+                plan.partitions.max(1),
                 &options,
             )
             .map_err(failed)?
@@ -99,24 +104,15 @@ pub(crate) fn run(args: &InspectArgs) -> Result<(), CliError> {
             lights.push(parts);
             reports.push(light_reports);
         } else {
-            let parts = plan_light(
-                scene,
-                light,
-                resolved.technique,
-                resolved.splits,
-                resolved.partitions,
-                nearest,
-                &args.shadow.optimizer.options(),
-            )
-            .map_err(failed)?;
-            lights.push(parts);
+            lights.push(plan_light(scene, light, plan, nearest).map_err(failed)?);
         }
     }
     let report_of = |l: usize, p: usize| reports.get(l).and_then(|r| r.get(p));
     if args.json {
         let value = json!({
             "scene": scene.name,
-            "technique": resolved.technique.to_string(),
+            "technique": plan.technique.to_string(),
+            "focus": plan.focus.key(),
             "nearest_visible_depth": nearest,
             "lights": lights.iter().enumerate().map(|(l, parts)| json!({
                 "splits": std::iter::once(parts[0].near).chain(parts.iter().map(|p| p.far)).collect::<Vec<_>>(),
@@ -134,8 +130,10 @@ pub(crate) fn run(args: &InspectArgs) -> Result<(), CliError> {
         );
     }
     print_line(&format!(
-        "scene {}, technique {}",
-        scene.name, resolved.technique
+        "scene {}, technique {}, focus {}",
+        scene.name,
+        plan.technique,
+        plan.focus.key()
     ))?;
     if let Some(d) = nearest {
         print_line(&format!("nearest visible eye depth {d}"))?;
@@ -153,11 +151,18 @@ pub(crate) fn run(args: &InspectArgs) -> Result<(), CliError> {
                 s.gamma.to_degrees(),
                 s.half_fov.to_degrees()
             ))?;
-            if let Some(w) = s.warp {
+            if let Some(w) = &s.warp {
                 print_line(&format!(
                     "    λ = {}, n = {}, warp depth d = {}",
                     w.lambda, w.near_distance, w.depth
                 ))?;
+                print_line(&format!("    rule: {}", w.formula))?;
+                let inputs: Vec<String> = w
+                    .inputs
+                    .iter()
+                    .map(|(name, value)| format!("{name} = {value}"))
+                    .collect();
+                print_line(&format!("    inputs: {}", inputs.join(", ")))?;
             }
             if let Some(report) = report_of(l, p) {
                 let n = report.samples;

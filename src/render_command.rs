@@ -13,20 +13,18 @@ use crate::shadow_settings::resolve;
 pub(crate) fn run(args: &RenderArgs) -> Result<(), CliError> {
     let resolved = resolve(&args.shadow)?;
     let scene = &resolved.scene;
+    let technique = resolved.plan.technique;
     let options = FrameOptions {
-        technique: resolved.technique,
+        plan: resolved.plan.clone(),
         resolution: resolved.resolution,
         format: resolved.format,
-        partitions: resolved.partitions,
-        splits: resolved.splits,
         lookup: resolved.lookup.clone(),
         snap_texels: 0,
-        optimal: args.shadow.optimizer.options(),
     };
     let frame = render_frame(scene, &options)
-        .map_err(|e| CliError::Input(format!("{} with {}: {e}", scene.name, options.technique)))?;
+        .map_err(|e| CliError::Input(format!("{} with {technique}: {e}", scene.name)))?;
     let out = args.out.clone().unwrap_or_else(|| {
-        PathBuf::from("out/render").join(format!("{}-{}", scene.name, options.technique.key()))
+        PathBuf::from("out/render").join(format!("{}-{}", scene.name, technique.key()))
     });
     let image_failure =
         |e: shadowlab_raster::RasterError| CliError::Failure(anyhow::anyhow!("{e}"));
@@ -60,7 +58,7 @@ pub(crate) fn run(args: &RenderArgs) -> Result<(), CliError> {
                     .map_err(image_failure)?,
             ));
             let setup = &map.setup;
-            let warp = setup.warp.map_or(String::new(), |w| {
+            let warp = setup.warp.as_ref().map_or(String::new(), |w| {
                 format!(", λ = {:.6}, n' = {:.6}", w.lambda, w.near_distance)
             });
             print_line(&format!(

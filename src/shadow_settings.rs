@@ -5,83 +5,102 @@
 
 use std::path::Path;
 
-use shadowlab_raster::DepthFormat;
-use shadowlab_scene::{DEFAULT_SCENE, Scene, builtin_scene, load_scene};
-use shadowlab_shadow::{Bias, Filter, Lookup, Splits, Technique};
+use shadowlab_raster::{DepthFormat, MAX_TARGET_SIZE};
+use shadowlab_scene::{DEFAULT_SCENE, Scene, ShadowSettings, builtin_scene, load_scene};
+use shadowlab_shadow::optimal::OptimalOptions;
+use shadowlab_shadow::{Bias, Filter, FocusPolicy, Lookup, PlanOptions, Splits, Technique};
 
-use crate::args::ShadowArgs;
+use crate::args::{
+    MAX_OPTIMAL_ITERATIONS, OptimizerArgs, ShadowArgs, StatedWarps, border_fraction, parse_size,
+};
 use crate::error::CliError;
 
 /// The default shadow-map side.
-const DEFAULT_RESOLUTION: u32 = 1024;
+pub(crate) const DEFAULT_RESOLUTION: u32 = 1024;
+
+/// The most z-partitions.
+pub(crate) const MAX_PARTITIONS: u32 = 16;
 
 /// Everything `render` and `inspect` need, resolved.
 pub(crate) struct Resolved {
     pub(crate) scene: Scene,
-    pub(crate) technique: Technique,
+    pub(crate) plan: PlanOptions,
     pub(crate) resolution: u32,
-    pub(crate) partitions: usize,
-    pub(crate) splits: Splits,
     pub(crate) lookup: Lookup,
     pub(crate) format: DepthFormat,
 }
 
-/// Loads the scene and resolves the settings.
+/// A setting's value with where it came from, for the error message: the flag, or the scene's
+/// file and field.
+struct Given<T> {
+    value: T,
+    origin: String,
+}
+
+/// Where settings come from: the flags, then the scene's `[shadow]` table.
+struct Sources<'a> {
+    file: String,
+    scene: &'a ShadowSettings,
+}
+
+impl Sources<'_> {
+    /// The flag's value if given, else the scene's field's.
+    fn pick<T: Clone>(&self, flag: Option<&T>, field: Option<&T>, name: &str) -> Option<Given<T>> {
+        match (flag, field) {
+            (Some(v), _) => Some(Given {
+                value: v.clone(),
+                origin: format!("invalid --{name}"),
+            }),
+            (None, Some(v)) => Some(Given {
+                value: v.clone(),
+                origin: format!("{}: shadow.{}", self.file, name.replace('-', "_")),
+            }),
+            (None, None) => None,
+        }
+    }
+}
+
+impl<T> Given<T> {
+    /// The value parsed by `parse`, its error prefixed with where the value came from.
+    fn parse<U>(self, parse: impl FnOnce(T) -> Result<U, String>) -> Result<U, CliError> {
+        parse(self.value).map_err(|e| CliError::Input(format!("{}: {e}", self.origin)))
+    }
+}
+
+/// Loads the scene and resolves the settings: each value parsed once, where it was given.
 pub(crate) fn resolve(args: &ShadowArgs) -> Result<Resolved, CliError> {
     let scene = load_scene_argument(args.scene.as_deref())?;
-    let file = scene_label(args.scene.as_deref());
     let settings = scene.shadow.clone();
-    // The value of a setting and where it came from, for the error message.
-    let pick =
-        |flag: &Option<String>, from_scene: &Option<String>, name: &str| match (flag, from_scene) {
-            (Some(v), _) => Some((v.clone(), format!("invalid --{name}"))),
-            (None, Some(v)) => Some((
-                v.clone(),
-                format!("{file}: shadow.{}", name.replace('-', "_")),
-            )),
-            (None, None) => None,
-        };
-    let technique_spec = pick(&args.technique, &settings.technique, "technique");
-    let parameter_spec = pick(&args.parameter, &settings.parameter, "param");
-    let technique = Technique::parse(
-        technique_spec.as_ref().map_or("lispsm", |(v, _)| v),
-        parameter_spec.as_ref().map(|(v, _)| v.as_str()),
-    )
-    .map_err(|e| {
-        let origin = parameter_spec
-            .as_ref()
-            .filter(|_| e.contains("parameter"))
-            .or(technique_spec.as_ref())
-            .map_or("invalid --technique".to_string(), |(_, o)| o.clone());
-        CliError::Input(format!("{origin}: {e}"))
-    })?;
-    let parsed = |spec: Option<(String, String)>,
-                  default: &str,
-                  parse: &dyn Fn(&str) -> Result<(), String>| {
-        match spec {
-            Some((value, origin)) => parse(&value)
-                .map(|()| value)
-                .map_err(|e| CliError::Input(format!("{origin}: {e}"))),
-            None => Ok(default.to_string()),
-        }
+    let sources = Sources {
+        file: scene_label(args.scene.as_deref()),
+        scene: &settings,
     };
-    let splits_spec = parsed(
-        pick(&args.split_scheme, &settings.split_scheme, "split-scheme"),
-        "practical:0.5",
-        &|s| Splits::parse(s).map(|_| ()),
-    )?;
-    let bias_spec = pick(&args.bias, &settings.bias, "bias");
-    let bias = match &bias_spec {
-        Some((value, origin)) => {
-            Bias::parse(value).map_err(|e| CliError::Input(format!("{origin}: {e}")))?
-        }
-        None => Bias::DEFAULT,
+    let technique = technique(args, &sources)?;
+    let splits = sources
+        .pick(
+            args.split_scheme.as_ref(),
+            settings.split_scheme.as_ref(),
+            "split-scheme",
+        )
+        .map(|g| g.parse(|s| Splits::parse(&s)))
+        .transpose()?
+        .unwrap_or(Splits::Practical { weight: 0.5 });
+    let bias = sources
+        .pick(args.bias.as_ref(), settings.bias.as_ref(), "bias")
+        .map(|g| g.parse(|s| Bias::parse(&s)))
+        .transpose()?
+        .unwrap_or(Bias::DEFAULT);
+    let filter = sources
+        .pick(args.filter.as_ref(), settings.filter.as_ref(), "filter")
+        .map(|g| g.parse(|s| Filter::parse(&s)))
+        .transpose()?
+        .unwrap_or(Filter::Nearest);
+    let focus = match (args.focus, &settings.focus) {
+        (Some(focus), _) => focus,
+        (None, Some(key)) => FocusPolicy::parse(key)
+            .map_err(|e| CliError::Input(format!("{}: shadow.focus: {e}", sources.file)))?,
+        (None, None) => FocusPolicy::default(),
     };
-    let filter_spec = parsed(
-        pick(&args.filter, &settings.filter, "filter"),
-        "nearest",
-        &|s| Filter::parse(s).map(|_| ()),
-    )?;
     let format = match &args.format {
         Some(key) => DepthFormat::ALL
             .into_iter()
@@ -93,30 +112,154 @@ pub(crate) fn resolve(args: &ShadowArgs) -> Result<Resolved, CliError> {
             })?,
         None => DepthFormat::F32,
     };
-    let resolution = args
-        .resolution
-        .or(settings.resolution)
-        .unwrap_or(DEFAULT_RESOLUTION);
-    if !(1..=16384).contains(&resolution) {
-        return Err(CliError::Input(format!(
-            "{file}: shadow.resolution ({resolution}) must lie in 1..=16384"
-        )));
-    }
-    let partitions = args.splits.or(settings.splits).unwrap_or(1);
-    if !(1..=16).contains(&partitions) {
-        return Err(CliError::Input(format!(
-            "{file}: shadow.splits ({partitions}) must lie in 1..=16"
-        )));
-    }
+    let resolution = sources
+        .pick(
+            args.resolution.as_ref(),
+            settings.resolution.as_ref(),
+            "resolution",
+        )
+        .map_or(Ok(DEFAULT_RESOLUTION), |g| {
+            g.parse(|r| in_range(r, 1, MAX_TARGET_SIZE))
+        })?;
+    let partitions = sources
+        .pick(args.splits.as_ref(), settings.splits.as_ref(), "splits")
+        .map_or(Ok(1), |g| g.parse(|k| in_range(k, 1, MAX_PARTITIONS)))?;
+    let optimal = optimizer(&args.optimizer, &sources)?;
     Ok(Resolved {
+        plan: PlanOptions {
+            technique,
+            partitions: partitions as usize,
+            splits,
+            focus,
+            optimal,
+        },
         scene,
-        technique,
         resolution,
-        partitions: partitions as usize,
-        splits: Splits::parse(&splits_spec).expect("checked above"),
-        lookup: Lookup::new(bias, Filter::parse(&filter_spec).expect("checked above")),
+        lookup: Lookup::new(bias, filter),
         format,
     })
+}
+
+/// `value` if it lies in `lo..=hi`.
+fn in_range(value: u32, lo: u32, hi: u32) -> Result<u32, String> {
+    if (lo..=hi).contains(&value) {
+        Ok(value)
+    } else {
+        Err(format!("{value} must lie in {lo}..={hi}"))
+    }
+}
+
+/// The technique and its parameter: `--param`, `--lambda` or `--n` (at most one, which clap
+/// checks), else the scene's `parameter`, `lambda` or `n` (at most one).
+fn technique(args: &ShadowArgs, sources: &Sources<'_>) -> Result<Technique, CliError> {
+    let settings = sources.scene;
+    let key = sources.pick(
+        args.technique.as_ref(),
+        settings.technique.as_ref(),
+        "technique",
+    );
+    let from_flags = [
+        args.parameter.clone().map(|p| ("param", p)),
+        args.lambda.map(|l| ("lambda", format!("lambda={l}"))),
+        args.near_distance.map(|n| ("n", format!("n={n}"))),
+    ];
+    let from_scene = [
+        settings.parameter.clone().map(|p| ("parameter", p)),
+        settings.lambda.map(|l| ("lambda", format!("lambda={l}"))),
+        settings.n.map(|n| ("n", format!("n={n}"))),
+    ];
+    let given: Vec<_> = from_flags.into_iter().flatten().collect();
+    let parameter = match &given[..] {
+        [(flag, spec)] => Some(Given {
+            value: spec.clone(),
+            origin: format!("invalid --{flag}"),
+        }),
+        _ => {
+            let fields: Vec<_> = from_scene.into_iter().flatten().collect();
+            match &fields[..] {
+                [] => None,
+                [(field, spec)] => Some(Given {
+                    value: spec.clone(),
+                    origin: format!("{}: shadow.{field}", sources.file),
+                }),
+                _ => {
+                    return Err(CliError::Input(format!(
+                        "{}: shadow: give at most one of parameter, lambda and n",
+                        sources.file
+                    )));
+                }
+            }
+        }
+    };
+    let key_name = key.as_ref().map_or("lispsm", |g| g.value.as_str());
+    match Technique::parse(key_name, parameter.as_ref().map(|g| g.value.as_str())) {
+        Ok(technique) => Ok(technique),
+        // The key is checked alone first, so an error with a valid key is the parameter's.
+        Err(e) => {
+            let origin = match (&key, Technique::parse(key_name, None)) {
+                (Some(k), Err(_)) => &k.origin,
+                (None, Err(_)) => "invalid --technique",
+                (_, Ok(_)) => parameter.as_ref().map_or("invalid --param", |g| &g.origin),
+            };
+            Err(CliError::Input(format!("{origin}: {e}")))
+        }
+    }
+}
+
+/// The scene-optimized map's settings: each flag, else the scene's field, else the default.
+fn optimizer(args: &OptimizerArgs, sources: &Sources<'_>) -> Result<OptimalOptions, CliError> {
+    let settings = sources.scene;
+    let defaults = OptimalOptions::default();
+    let readback = match (args.optimal_readback, &settings.optimal_readback) {
+        (Some(size), _) => size,
+        (None, Some(text)) => parse_size(text).map_err(|e| {
+            CliError::Input(format!("{}: shadow.optimal_readback: {e}", sources.file))
+        })?,
+        (None, None) => defaults.readback,
+    };
+    let initial_resolution = sources
+        .pick(
+            args.optimal_initial.as_ref(),
+            settings.optimal_initial.as_ref(),
+            "optimal-initial",
+        )
+        .map_or(Ok(defaults.initial_resolution), |g| {
+            g.parse(|r| in_range(r, 1, MAX_TARGET_SIZE))
+        })?;
+    let iterations = sources
+        .pick(
+            args.optimal_iterations.as_ref(),
+            settings.optimal_iterations.as_ref(),
+            "optimal-iterations",
+        )
+        .map_or(Ok(defaults.iterations), |g| {
+            g.parse(|n| in_range(n, 0, MAX_OPTIMAL_ITERATIONS).map(|n| n as usize))
+        })?;
+    let border = sources
+        .pick(
+            args.optimal_border.as_ref(),
+            settings.optimal_border.as_ref(),
+            "optimal-border",
+        )
+        .map_or(Ok(defaults.border), |g| g.parse(border_fraction))?;
+    Ok(OptimalOptions {
+        readback,
+        initial_resolution,
+        iterations,
+        border,
+        direction: defaults.direction,
+    })
+}
+
+/// The optimizer's settings of a command without a scene table (`compare`, `analyze`).
+pub(crate) fn optimizer_flags(args: &OptimizerArgs) -> Result<OptimalOptions, CliError> {
+    optimizer(
+        args,
+        &Sources {
+            file: String::new(),
+            scene: &ShadowSettings::default(),
+        },
+    )
 }
 
 /// The scene named on the command line: a built-in name, or a path to a scene file.
@@ -140,7 +283,26 @@ fn scene_label(name: Option<&str>) -> String {
     }
 }
 
-/// The techniques named on the command line (`TECHNIQUE` or `lispsm:PARAMETER`).
+/// The techniques of a list (`--techniques`), then LiSPSM at each stated λ and n (`--lambda`,
+/// `--n`).
+pub(crate) fn technique_list(
+    specs: &[String],
+    stated: &StatedWarps,
+) -> Result<Vec<Technique>, CliError> {
+    let mut techniques = parse_techniques(specs, "--techniques")?;
+    for (flag, values) in [("--lambda", &stated.lambda), ("--n", &stated.near_distance)] {
+        let key = if flag == "--lambda" { "lambda" } else { "n" };
+        for value in values {
+            techniques.push(
+                Technique::parse("lispsm", Some(&format!("{key}={value}")))
+                    .map_err(|e| CliError::Input(format!("invalid {flag}: {e}")))?,
+            );
+        }
+    }
+    Ok(techniques)
+}
+
+/// The techniques named on the command line (`TECHNIQUE` or `TECHNIQUE:PARAMETER`).
 pub(crate) fn parse_techniques(specs: &[String], flag: &str) -> Result<Vec<Technique>, CliError> {
     specs
         .iter()

@@ -35,6 +35,7 @@ fn default_options() -> StudyOptions {
         map_truth: false,
         pictures_at: None,
         optimal: shadowlab_shadow::optimal::OptimalOptions::default(),
+        focus: shadowlab_shadow::FocusPolicy::Light,
     }
 }
 

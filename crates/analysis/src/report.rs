@@ -8,7 +8,7 @@ use std::fmt::Write as _;
 
 use serde_json::{Value, json};
 use shadowlab_plot::{Axis, Figure, LegendPosition, LineStyle, Panel, Series};
-use shadowlab_shadow::{Filter, StepDirection, Technique, WarpChoice};
+use shadowlab_shadow::{Filter, StepDirection, Technique};
 
 use crate::aliasing::AliasingStats;
 use crate::error::AnalysisError;
@@ -33,14 +33,13 @@ pub struct Report {
     pub view_axis: Option<(String, Vec<u8>)>,
 }
 
-/// The technique's name in tables: its key, and LiSPSM's parameter after a slash.
+/// The technique's name in tables: its key, and its parameter after a slash where it is not the
+/// default (`lispsm/minimax`, `logarithmic/faces`, `optimal/refit`).
 #[must_use]
 pub fn technique_label(technique: Technique) -> String {
-    match technique {
-        Technique::Lispsm(choice) if choice == WarpChoice::PAPER => "lispsm".into(),
-        Technique::Lispsm(choice) => format!("lispsm/{}", choice.key()),
-        Technique::Optimal(StepDirection::Refitted) => "optimal/refit".into(),
-        other => other.key().into(),
+    match technique.parameter() {
+        Some(parameter) => format!("{}/{parameter}", technique.key()),
+        None => technique.key().into(),
     }
 }
 

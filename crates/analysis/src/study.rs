@@ -7,8 +7,8 @@ use shadowlab_raster::{DepthFormat, EyeImage, NO_TRIANGLE};
 use shadowlab_scene::Scene;
 use shadowlab_shadow::optimal::OptimalOptions;
 use shadowlab_shadow::{
-    Bias, Filter, FrameOptions, Lookup, ShadowError, Shadows, Splits, Technique, eye_pass,
-    render_shadows, scene_eye,
+    Bias, Filter, FocusPolicy, FrameOptions, Lookup, PlanOptions, ShadowError, Shadows, Splits,
+    Technique, eye_pass, render_shadows, scene_eye,
 };
 use shadowlab_trace::Bvh;
 
@@ -46,6 +46,8 @@ pub struct StudyOptions {
     pub pictures_at: Option<u32>,
     /// The scene-optimized map's settings (its step direction is the technique's).
     pub optimal: OptimalOptions,
+    /// The body B every map is fitted to.
+    pub focus: FocusPolicy,
 }
 
 /// The pictures of one combination: rows from the bottom, like the eye image.
@@ -166,14 +168,17 @@ pub fn render(
     render_shadows(
         scene,
         &FrameOptions {
-            technique: setting.technique,
+            plan: PlanOptions {
+                technique: setting.technique,
+                partitions: setting.partitions,
+                splits: options.splits,
+                focus: options.focus,
+                optimal: options.optimal,
+            },
             resolution: setting.resolution,
             format: options.format,
-            partitions: setting.partitions,
-            splits: options.splits,
             lookup: Lookup::new(options.bias, setting.filter),
             snap_texels: 0,
-            optimal: options.optimal,
         },
         &eye.image,
         eye.nearest_visible,

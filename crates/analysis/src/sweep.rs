@@ -93,6 +93,7 @@ pub fn sweep(
         map_truth: false,
         pictures_at: None,
         optimal: shadowlab_shadow::optimal::OptimalOptions::default(),
+        focus: shadowlab_shadow::FocusPolicy::Light,
     };
     let mut points = Vec::new();
     let total = angles.len() * techniques.len();

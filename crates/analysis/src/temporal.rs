@@ -5,9 +5,9 @@ use glam::{DQuat, DVec3};
 use shadowlab_hull::ViewPose;
 use shadowlab_raster::NO_TRIANGLE;
 use shadowlab_scene::Scene;
-use shadowlab_shadow::optimal::OptimalOptions;
 use shadowlab_shadow::{
-    Bias, Filter, FrameOptions, Lookup, ShadowError, Splits, Technique, eye_pass, render_shadows,
+    Bias, Filter, FrameOptions, Lookup, PlanOptions, ShadowError, Technique, eye_pass,
+    render_shadows,
 };
 use shadowlab_trace::Bvh;
 
@@ -83,14 +83,11 @@ pub fn temporal(
         for (state, (technique, snap)) in states.iter_mut().zip(&variants) {
             let Ok(history) = state else { continue };
             let options = FrameOptions {
-                technique: *technique,
+                plan: PlanOptions::new(*technique),
                 resolution,
                 format: shadowlab_raster::DepthFormat::F32,
-                partitions: 1,
-                splits: Splits::Uniform,
                 lookup: Lookup::new(Bias::DEFAULT, Filter::Nearest),
                 snap_texels: *snap,
-                optimal: OptimalOptions::default(),
             };
             match render_shadows(&moved, &options, &eye, nearest_visible, Some(&bvh)) {
                 Ok(shadows) => history.push(

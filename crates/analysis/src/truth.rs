@@ -35,9 +35,8 @@ use glam::DVec3;
 use rayon::prelude::*;
 use shadowlab_raster::{DepthFormat, EyeImage, NO_TRIANGLE, Triangles};
 use shadowlab_scene::Scene;
-use shadowlab_shadow::optimal::OptimalOptions;
 use shadowlab_shadow::{
-    Bias, Filter, LightSource, Lookup, MapOptions, ShadowMap, Splits, Technique, plan_light,
+    Bias, Filter, LightSource, Lookup, MapOptions, PlanOptions, ShadowMap, Technique, plan_light,
 };
 use shadowlab_trace::{Bvh, Hit, Ray, offset_origin};
 
@@ -295,15 +294,7 @@ pub fn map_truth(scene: &Scene, eye: &EyeImage, resolution: u32) -> Result<Truth
         outside_cone: Vec::with_capacity(scene.lights.len()),
     };
     for light in &scene.lights {
-        let partitions = plan_light(
-            scene,
-            light,
-            Technique::Uniform,
-            Splits::Uniform,
-            1,
-            None,
-            &OptimalOptions::default(),
-        )?;
+        let partitions = plan_light(scene, light, &PlanOptions::new(Technique::Uniform), None)?;
         let setup = &partitions
             .first()
             .expect("plan_light plans one partition when asked for one")

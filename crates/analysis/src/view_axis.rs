@@ -17,8 +17,8 @@
 use shadowlab_params::{DepthRange, FrustumModel, HalfFov, LightAngle, WarpParameter};
 use shadowlab_scene::{Scene, SceneLight};
 use shadowlab_shadow::{
-    FocusPolicy, LightSetup, PlanInput, ShadowError, Technique, measure, plan, scene_eye,
-    scene_input,
+    FocusPolicy, LightSetup, PlanInput, ShadowError, ShadowMapping, Technique, measure, plan,
+    scene_eye, scene_input,
 };
 
 use crate::error::AnalysisError;
@@ -76,8 +76,8 @@ pub fn curves(scene: &Scene, techniques: &[Technique]) -> Result<Vec<AxisCurve>,
         })?;
     let eye = scene_eye(scene);
     let (view_input, scene_input) = (
-        scene_input(scene, light, None, FocusPolicy::ViewFrustum)?,
-        scene_input(scene, light, None, FocusPolicy::Scene)?,
+        scene_input(scene, light, None, FocusPolicy::View)?,
+        scene_input(scene, light, None, FocusPolicy::Light)?,
     );
     let projection = eye.projection;
     let range = DepthRange::new(projection.near(), projection.far()).map_err(ShadowError::from)?;
@@ -145,8 +145,12 @@ fn closed_form(technique: Technique, setup: &LightSetup, range: DepthRange, t: f
             model.view_axis_error(gamma, warp, t).ok()
         }
         // LiSPSM §4: the ideal parameterisation's constant error — ln(f/n) at 90°, ln(1 + 1/λ)
-        // for the warp-axis extent it is fitted to at other angles (formulas.md §2.9).
-        Technique::Logarithmic => Some((1.0 / setup.warp.as_ref()?.lambda).ln_1p()),
+        // for the warp-axis extent it is fitted to at other angles (formulas.md §2.9) — where its
+        // reference point is the eye; elsewhere `LogarithmicMap::view_axis_error`.
+        Technique::Logarithmic(_) => match &setup.mapping {
+            ShadowMapping::Logarithmic(map) => Some(map.view_axis_error(setup.gamma.sin(), t)),
+            ShadowMapping::Projective { .. } => None,
+        },
         Technique::Psm | Technique::Optimal(_) => None,
     }
 }

@@ -104,12 +104,18 @@ impl SceneLight {
 /// The shadow settings a scene file may suggest (its `[shadow]` table). They are raw and optional
 /// here: the `shadow` crate and the command-line tool validate the names and values, and settings
 /// given on the command line override these.
-#[derive(Clone, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct ShadowSettings {
     /// The technique, e.g. `"lispsm"`.
     pub technique: Option<String>,
-    /// The technique's warp parameter, as text (e.g. a rule's name or a number).
+    /// The technique's warp parameter, as text (e.g. a rule's name).
     pub parameter: Option<String>,
+    /// The warp's λ, instead of a named parameter (finite).
+    pub lambda: Option<f64>,
+    /// The warp's near distance n, instead of a named parameter (finite).
+    pub n: Option<f64>,
+    /// The focus body, e.g. `"light"`.
+    pub focus: Option<String>,
     /// The shadow map's width and height in texels.
     pub resolution: Option<u32>,
     /// The number of cascades (split frusta).
@@ -120,4 +126,12 @@ pub struct ShadowSettings {
     pub bias: Option<String>,
     /// The lookup filter, e.g. `"pcf"`.
     pub filter: Option<String>,
+    /// The scene-optimized map's read-back size, `"WxH"`.
+    pub optimal_readback: Option<String>,
+    /// The side of its initial map.
+    pub optimal_initial: Option<u32>,
+    /// Its most iterations.
+    pub optimal_iterations: Option<u32>,
+    /// Its border around the samples (finite).
+    pub optimal_border: Option<f64>,
 }

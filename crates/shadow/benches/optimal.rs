@@ -20,7 +20,7 @@ fn optimizer(c: &mut Criterion) {
     let mut group = c.benchmark_group("optimal");
     for name in ["outdoor", "dueling-frusta"] {
         let scene = builtin_scene(name).expect("a built-in scene");
-        let input = scene_input(&scene, &scene.lights[0], None, FocusPolicy::Scene)
+        let input = scene_input(&scene, &scene.lights[0], None, FocusPolicy::Light)
             .expect("the scene's plan input");
         group.bench_function(format!("readback/{name}"), |b| {
             b.iter(|| Readback::new(black_box(&scene), options.readback).expect("readback"));

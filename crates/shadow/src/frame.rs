@@ -85,6 +85,22 @@ impl LightFrame {
         (h.w > 0.0).then(|| h.truncate() / h.w)
     }
 
+    /// The camera's near and far distances along its view axis, measured in the space where the
+    /// light is directional: `eye`'s own for a directional light, and for a spot light the
+    /// distances from the eye to the view axis's near and far points after the spot's transform
+    /// (LiSPSM §3.4: "point lights can be treated as directional lights from this point on").
+    /// `None` if a spot's transform sends one of them behind the light.
+    pub(crate) fn view_range(&self, eye: &Eye) -> Option<(f64, f64)> {
+        let projection = eye.projection;
+        if self.pre == DMat4::IDENTITY {
+            return Some((projection.near(), projection.far()));
+        }
+        let (e, v) = (eye.pose.eye(), eye.pose.forward());
+        let origin = self.light_point(e)?;
+        let distance = |t: f64| Some((self.light_point(e + v * t)? - origin).length());
+        Some((distance(projection.near())?, distance(projection.far())?))
+    }
+
     /// Light-space points of a set of world points; `None` if one is behind a spot light.
     pub(crate) fn light_points(&self, world: &[DVec3]) -> Option<Vec<DVec3>> {
         world.iter().map(|p| self.light_point(*p)).collect()

@@ -140,14 +140,44 @@ pub struct PlanInput {
     pub focus: FocusPolicy,
 }
 
-/// The body B a shadow map is fitted to.
+/// The body B a shadow map is fitted to (`--focus`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum FocusPolicy {
-    /// B = conv(V ∪ l) ∩ S ∩ L (PSM §4.1, LiSPSM §3.3): every potential occluder of a visible point.
+    /// `light`: B = conv(V ∪ l) ∩ S ∩ L (PSM §4.1, LiSPSM §3.3): every potential occluder of a
+    /// visible point.
     #[default]
-    Scene,
-    /// B = V, the view frustum alone: the 2-D model of CAD eqs. 10–12 and GMNPR eq. 2, under which
-    /// the closed forms of `shadowlab-params` hold exactly. For measurement, not for rendering (it
-    /// misses occluders outside the view).
-    ViewFrustum,
+    Light,
+    /// `view-scene`: B = V ∩ S, the visible part of the scene bounds — the receivers, without the
+    /// occluders between them and the light (those outside it cast no shadow into the map).
+    ViewScene,
+    /// `view`: B = V, the view frustum alone: the 2-D model of CAD eqs. 10–12 and GMNPR eq. 2,
+    /// under which the closed forms of `shadowlab-params` hold exactly — the papers' own set-up.
+    /// For measurement, not for rendering (it misses occluders outside the view).
+    View,
+}
+
+impl FocusPolicy {
+    /// Every policy.
+    pub const ALL: [Self; 3] = [Self::Light, Self::ViewScene, Self::View];
+
+    /// Its key: `light`, `view-scene`, `view`.
+    #[must_use]
+    pub fn key(self) -> &'static str {
+        match self {
+            Self::Light => "light",
+            Self::ViewScene => "view-scene",
+            Self::View => "view",
+        }
+    }
+
+    /// The policy named `key`.
+    ///
+    /// # Errors
+    /// An unknown key, with the known ones.
+    pub fn parse(key: &str) -> Result<Self, String> {
+        Self::ALL
+            .into_iter()
+            .find(|p| p.key() == key)
+            .ok_or_else(|| format!("unknown focus {key:?}; known: light, view-scene, view"))
+    }
 }

@@ -31,6 +31,7 @@ mod lookup;
 mod map;
 pub mod measure;
 pub mod optimal;
+mod parameter;
 mod plan;
 pub mod psm;
 mod render;
@@ -46,9 +47,11 @@ pub use lookup::{Bias, DEFAULT_DISK_SEED, DEFAULT_MIN_VARIANCE, Filter, Lookup};
 pub use map::{MapOptions, ShadowMap};
 pub use plan::{Partition, Splits, plan, plan_partitions};
 pub use render::{
-    Frame, FrameOptions, LightShadow, Shadows, Timings, eye_pass, plan_light, render_frame,
-    render_shadows, scene_eye, scene_input,
+    Frame, FrameOptions, LightShadow, PlanOptions, Shadows, Timings, eye_pass, plan_light,
+    render_frame, render_shadows, scene_eye, scene_input,
 };
 pub use setup::{LightSetup, PsmReport, ShadowMapping, WarpReport};
 pub use snap::snap_to_texels;
-pub use technique::{ProductionVariant, StepDirection, Technique, WarpChoice};
+pub use technique::{
+    LogarithmicChoice, NearDistance, ProductionVariant, StepDirection, Technique, WarpChoice,
+};

@@ -10,30 +10,43 @@
 //! depth = linear in y, growing away from the light
 //! ```
 //!
-//! with its reference point at the eye's position along the warp axis: `λ = −z_max/d` (the eye is
-//! the light-space origin). Along the view axis, whose eye depth `t` has light-space
-//! `z = −t sin γ`, this gives `1 + τ/λ = t sin γ/(−z_max)`, so `s = (Y + 1)/2` is
-//! `ln(t/t0)/ln(1 + 1/λ)` and the perspective aliasing `dp/ds = (1/t)·dt/ds = ln(1 + 1/λ)` is the
+//! with its reference point at distance `n' = λ·d` beyond B's near plane along the warp axis. At
+//! the eye's position, `λ = −z_max/d` (the eye is the light-space origin), the view axis, whose eye
+//! depth `t` has light-space `z = −t sin γ`, gets `1 + τ/λ = t sin γ/(−z_max)`, so `s = (Y + 1)/2`
+//! is `ln(t/t0)/ln(1 + 1/λ)` and the perspective aliasing `dp/ds = (1/t)·dt/ds = ln(1 + 1/λ)` is the
 //! same at every depth: for `γ = 90°` and B = V, `ln(zf/zn)` (formulas.md §2.9), the constant the
 //! paper predicts. The map is not projective, so no rasterizer can draw it: the shadow map is
 //! made by casting one ray per texel along the light ([`LogarithmicMap::texel_ray`]).
 //!
-//! It exists only where B lies entirely on one side of the eye along the warp axis (`z_max < 0`);
-//! for B = V that is `γ > φ`. Elsewhere [`crate::plan`] says the technique is not defined, as
-//! `shadowlab-params` does for GLPR.
+//! The eye can serve as the reference point only where it lies beyond B's near plane (`z_max < 0`;
+//! for B = V, `γ > φ`). [`reference_lambda`] is the rule that chooses λ everywhere else too
+//! ([`LogarithmicChoice::Eye`]); `lambda=L` and `n=N` state it. Everything is written in `κ = 1/λ`
+//! (`Y = 2·ln(1 + κτ)/ln(1 + κ) − 1`, `w = 1 + κτ`), so `κ = 0` is the uniform map exactly, the
+//! limit the rule reaches as γ → 0.
 
 use glam::{DMat4, DVec2, DVec3};
+
+use shadowlab_params::{FrustumModel, LightAngle, gmnpr};
 
 use crate::error::ShadowError;
 use crate::input::PlanInput;
 use crate::plan::{focus_in_light_space, view_model};
 use crate::setup::{LightSetup, ShadowMapping, WarpReport};
-use crate::technique::Technique;
+use crate::technique::{LogarithmicChoice, Technique};
 use crate::warp::Extents;
 
-/// λ below this (the eye within a billionth of B's depth of its near plane) counts as the eye
-/// touching B: the logarithm's reference point would sit on B.
-const MIN_LAMBDA: f64 = 1e-9;
+/// The smallest λ of a logarithmic map: a reference point within a billionth of B's depth of its
+/// near plane would all but sit on B (a third of the map's rows would cover B's first 1e-6 of
+/// depth). A stated λ below it is refused.
+pub const MIN_LAMBDA: f64 = 1e-9;
+
+/// How near [`reference_lambda`] lets the reference point come to B's near plane, as a fraction
+/// of the eye's own distance in the papers' ideal case (γ = 90°, B = V: `λ = z_n/(z_f − z_n)`).
+/// Where the eye approaches B's near plane (γ → φ for B = V) the eye's λ tends to 0 and the map
+/// would crowd its rows onto that plane; the floor keeps its error within `ln(1 + 10·z_f/z_n)`
+/// there and the map's change per radian of γ bounded. On the built-in scenes the eye's λ is at
+/// least 2.8 times the floor (cad-lattice), so the floor leaves them alone.
+pub const REFERENCE_FLOOR_FRACTION: f64 = 0.1;
 
 /// The exact logarithmic mapping of one shadow map.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -45,8 +58,8 @@ pub struct LogarithmicMap {
     /// B's near plane (largest z) and its extent along the warp axis.
     z_max: f64,
     depth: f64,
-    /// λ = −z_max/d.
-    lambda: f64,
+    /// κ = 1/λ = d/n', 0 for the uniform limit.
+    kappa: f64,
     /// Lateral extents of x/w over B.
     left: f64,
     right: f64,
@@ -66,12 +79,12 @@ impl LogarithmicMap {
         }
         let q = h.truncate() / h.w;
         let tau = (self.z_max - q.z) / self.depth;
-        let w = 1.0 + tau / self.lambda;
+        let w = 1.0 + self.kappa * tau;
         if w <= 0.0 {
             return None;
         }
         let x = (2.0 * q.x / w - (self.left + self.right)) / (self.right - self.left);
-        let y = 2.0 * (tau / self.lambda).ln_1p() / (1.0 / self.lambda).ln_1p() - 1.0;
+        let y = 2.0 * self.warp(tau) - 1.0;
         let depth = (self.y_max + self.y_min - 2.0 * q.y) / (self.y_max - self.y_min);
         Some(DVec3::new(x, y, depth))
     }
@@ -79,12 +92,11 @@ impl LogarithmicMap {
     /// The derivative of [`Self::ndc`]'s `(X, Y)` at `world` along `direction` (per unit of
     /// `direction`), differentiated in closed form (the map in the module docs): with
     /// `h = M·(p, 1)`, `ḣ = M·(t, 0)`, `q = h/h_w`, `q̇ = (ḣ·h_w − h·ḣ_w)/h_w²`, `τ̇ = −q̇_z/d` and
-    /// `ẇ = τ̇/λ`,
+    /// `ẇ = κ·τ̇`,
     ///
-    /// `Ẋ = 2·(q̇_x·w − q_x·ẇ)/(w²·(r − l))`,  `Ẏ = 2·τ̇/((λ + τ)·ln(1 + 1/λ))`,
+    /// `Ẋ = 2·(q̇_x·w − q_x·ẇ)/(w²·(r − l))`,  `Ẏ = 2·τ̇·κ/(w·ln(1 + κ))`,
     ///
-    /// the last with `λ·w` written `λ + τ`, which stays exact for λ near its smallest allowed
-    /// value (1e-9) and for λ → ∞ (where `ln(1 + 1/λ)` is `ln_1p`'s). `None` where `ndc` is
+    /// the last with `κ/ln(1 + κ)` taken as 1 at κ = 0 (the uniform limit). `None` where `ndc` is
     /// `None`.
     #[must_use]
     pub fn ndc_derivative(&self, world: DVec3, direction: DVec3) -> Option<DVec2> {
@@ -96,14 +108,14 @@ impl LogarithmicMap {
         let q = h.truncate() / h.w;
         let dq = (dh.truncate() * h.w - h.truncate() * dh.w) / (h.w * h.w);
         let tau = (self.z_max - q.z) / self.depth;
-        let w = 1.0 + tau / self.lambda;
+        let w = 1.0 + self.kappa * tau;
         if w <= 0.0 {
             return None;
         }
         let dtau = -dq.z / self.depth;
-        let dw = dtau / self.lambda;
+        let dw = self.kappa * dtau;
         let dx = 2.0 * (dq.x * w - q.x * dw) / (w * w * (self.right - self.left));
-        let dy = 2.0 * dtau / ((self.lambda + tau) * (1.0 / self.lambda).ln_1p());
+        let dy = 2.0 * dtau * self.slope() / w;
         Some(DVec2::new(dx, dy))
     }
 
@@ -112,10 +124,15 @@ impl LogarithmicMap {
     /// Casting it and mapping the first hit through [`Self::ndc`] gives the texel's depth.
     #[must_use]
     pub fn texel_ray(&self, x: f64, y: f64) -> (DVec3, DVec3) {
-        // Inverse of Y: τ = λ·(exp(((Y + 1)/2)·ln(1 + 1/λ)) − 1), written with expm1 so that it is
-        // exact near τ = 0 and for large λ.
-        let tau = self.lambda * (0.5 * (y + 1.0) * (1.0 / self.lambda).ln_1p()).exp_m1();
-        let w = 1.0 + tau / self.lambda;
+        // Inverse of Y: τ = (exp(s·ln(1 + κ)) − 1)/κ, s = (Y + 1)/2, written with expm1 so that it
+        // is exact near τ = 0 and for small κ; τ = s at κ = 0.
+        let s = 0.5 * (y + 1.0);
+        let tau = if self.kappa > 0.0 {
+            (s * self.kappa.ln_1p()).exp_m1() / self.kappa
+        } else {
+            s
+        };
+        let w = 1.0 + self.kappa * tau;
         let lateral = 0.5 * w * (x * (self.right - self.left) + self.left + self.right);
         let z = self.z_max - tau * self.depth;
         let to_world = |light_y: f64| {
@@ -125,42 +142,142 @@ impl LogarithmicMap {
         (to_world(self.y_max), to_world(self.y_min))
     }
 
-    /// λ = −z_max/d, the reference point's distance before B's near plane in units of B's depth.
+    /// λ = n'/d, the reference point's distance beyond B's near plane in units of B's depth;
+    /// infinite for the uniform limit.
     #[must_use]
     pub fn lambda(&self) -> f64 {
-        self.lambda
+        1.0 / self.kappa
+    }
+
+    /// `dp/ds` along the view axis at eye depth `t`, for the map's own geometry (light space with
+    /// the eye at the origin, the view axis at `z = −t·sin γ`, `sin_gamma` of the map's space): with
+    /// `c = z_max + λ·d` the reference point's offset from the eye along the warp axis,
+    ///
+    /// `dp/ds = ln(1 + 1/λ)·(1 + c/(t·sin γ))`,
+    ///
+    /// the constant `ln(1 + 1/λ)` where the reference point is the eye (`c = 0`), and `d/(t·sin γ)`,
+    /// the uniform map's, at κ = 0. Written as `ln(1 + κ)·(1 + z_max/(t sin γ)) + (ln(1 + κ)/κ)·d/(t
+    /// sin γ)`, exact at κ = 0.
+    #[must_use]
+    pub fn view_axis_error(&self, sin_gamma: f64, t: f64) -> f64 {
+        let axis = t * sin_gamma;
+        self.kappa.ln_1p() * (1.0 + self.z_max / axis) + self.depth / (self.slope() * axis)
+    }
+
+    /// The warp axis's map coordinate in `[0, 1]` of a point a fraction τ through B:
+    /// `ln(1 + κτ)/ln(1 + κ)`, τ itself at κ = 0.
+    fn warp(&self, tau: f64) -> f64 {
+        if self.kappa > 0.0 {
+            (self.kappa * tau).ln_1p() / self.kappa.ln_1p()
+        } else {
+            tau
+        }
+    }
+
+    /// `κ/ln(1 + κ)`, the warp's slope at τ = 0; 1 at κ = 0.
+    fn slope(&self) -> f64 {
+        if self.kappa > 0.0 {
+            self.kappa / self.kappa.ln_1p()
+        } else {
+            1.0
+        }
     }
 }
 
-/// Plans the logarithmic map for `input`.
+/// λ of shadowlab's reference rule ([`LogarithmicChoice::Eye`]) for B with near plane `z_max`
+/// and depth `depth` along the warp axis (the eye at the light-space origin):
+///
+/// `λ = max(λ_eye, λ_fall(γ), λ_floor)`, `λ_eye = −z_max/d`,
+/// `λ_fall(γ) = λ2*(γ) − λ2*(φ)` for `γ < φ`, 0 above,
+/// `λ_floor = 0.1·z_n/(z_f − z_n)` ([`REFERENCE_FLOOR_FRACTION`], z_n and z_f the view's),
+///
+/// with `λ2*` GMNPR eq. 7's fall-back `λ1(φ)/tan(πγ/(4φ))` in the 2-D model of the view
+/// (`shadowlab_params::gmnpr::lambda2_star`). Wherever the eye lies beyond B's near plane by more
+/// than `λ_floor·d` and `γ ≥ φ` — every built-in scene but the dueling frusta, and B = V at 90°
+/// for any depth range — this is the eye's λ, the logarithmic map of LiSPSM §4 and Lloyd et al.;
+/// below φ it is the eye's λ where that exceeds `λ_fall`; elsewhere the reference point stays
+/// outside B.
+/// `λ_fall` is zero at φ, so λ is continuous across it, and it grows like λ2* to infinity as
+/// γ → 0, so the map tends to the uniform one. shadowlab's own rule: neither paper defines the map
+/// where the eye is inside B's extent.
+#[must_use]
+pub fn reference_lambda(z_max: f64, depth: f64, model: &FrustumModel, gamma: LightAngle) -> f64 {
+    let eye = -z_max / depth;
+    let phi = model.half_fov().radians();
+    let fall = match gmnpr::lambda2_star(model, gamma) {
+        Some(at_gamma) if gamma.radians() < phi => {
+            let at_phi = LightAngle::from_radians(phi)
+                .ok()
+                .and_then(|phi| gmnpr::lambda2_star(model, phi))
+                .map_or(0.0, |w| w.lambda());
+            at_gamma.lambda() - at_phi
+        }
+        _ => 0.0,
+    };
+    let range = model.range();
+    let floor = REFERENCE_FLOOR_FRACTION * range.near() / range.length();
+    eye.max(fall).max(floor).max(MIN_LAMBDA)
+}
+
+/// Plans the logarithmic map for `input`, its reference point chosen by `choice`.
 ///
 /// # Errors
-/// [`ShadowError::NotDefined`] where the eye lies within B's extent along the warp axis; as
-/// [`crate::plan`] otherwise.
-pub(crate) fn plan(input: &PlanInput) -> Result<LightSetup, ShadowError> {
-    let technique = Technique::Logarithmic;
+/// [`ShadowError::NotDefined`] for face partitioning (several maps: [`crate::plan_partitions`]) or
+/// a stated λ below [`MIN_LAMBDA`]; as [`crate::plan`] otherwise.
+pub(crate) fn plan(
+    input: &PlanInput,
+    choice: LogarithmicChoice,
+) -> Result<LightSetup, ShadowError> {
+    let technique = Technique::Logarithmic(choice);
     let (frame, world_points, points) = focus_in_light_space(input, technique)?;
-    let (_, half_fov) = view_model(input)?;
+    let (model, half_fov) = view_model(input)?;
+    let gamma = LightAngle::from_radians(frame.gamma())?;
     let extents = Extents::of(&points);
     let depth = extents.max.z - extents.min.z;
     if depth <= 0.0 {
         return Err(ShadowError::FlatFocusBody { axis: "warp axis" });
     }
-    let lambda = -extents.max.z / depth;
-    if lambda <= MIN_LAMBDA {
+    let common = [("gamma_degrees", gamma.degrees()), ("d", depth)];
+    let (lambda, formula, inputs) = match choice {
+        LogarithmicChoice::Eye => (
+            reference_lambda(extents.max.z, depth, &model, gamma),
+            "λ = max(−z_max/d, λ2*(γ) − λ2*(φ) below φ, 0.1·z_n/(z_f − z_n)): the reference point at the eye \
+             where it lies beyond B's near plane, else held outside B, growing to the uniform map \
+             as γ → 0 (λ2* of GMNPR eq. 7) — shadowlab's own rule",
+            vec![
+                ("z_max", extents.max.z),
+                ("z_n", model.range().near()),
+                ("z_f", model.range().far()),
+                ("phi_degrees", half_fov.to_degrees()),
+                common[0],
+                common[1],
+            ],
+        ),
+        LogarithmicChoice::Lambda(warp) => (warp.lambda(), "λ as stated", common.to_vec()),
+        LogarithmicChoice::NearDistance(n) => (n.get() / depth, "n as stated", common.to_vec()),
+        LogarithmicChoice::Faces => {
+            return Err(ShadowError::NotDefined {
+                technique: technique.key(),
+                reason: "face partitioning makes one map per face of the view frustum: plan it \
+                         with plan_partitions or plan_light"
+                    .into(),
+            });
+        }
+    };
+    if lambda < MIN_LAMBDA {
         return Err(ShadowError::NotDefined {
             technique: technique.key(),
             reason: format!(
-                "the eye lies within the focus body's extent along the warp axis (γ = {:.4}°, φ = {:.4}°): no logarithm has its reference point outside B",
-                frame.gamma().to_degrees(),
-                half_fov.to_degrees()
+                "λ = {lambda:e} puts the logarithm's reference point on B; it must be at least \
+                 {MIN_LAMBDA:e}"
             ),
         });
     }
+    let kappa = 1.0 / lambda;
     let (left, right) = points
         .iter()
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, r), p| {
-            let w = 1.0 + (extents.max.z - p.z) / depth / lambda;
+            let w = 1.0 + kappa * (extents.max.z - p.z) / depth;
             (l.min(p.x / w), r.max(p.x / w))
         });
     if right <= left || extents.max.y <= extents.min.y {
@@ -174,7 +291,7 @@ pub(crate) fn plan(input: &PlanInput) -> Result<LightSetup, ShadowError> {
         light_to_world: world_to_light.inverse(),
         z_max: extents.max.z,
         depth,
-        lambda,
+        kappa,
         left,
         right,
         y_min: extents.min.y,
@@ -183,12 +300,14 @@ pub(crate) fn plan(input: &PlanInput) -> Result<LightSetup, ShadowError> {
     Ok(LightSetup {
         technique,
         mapping: ShadowMapping::Logarithmic(map),
-        gamma: frame.gamma(),
+        gamma: gamma.radians(),
         half_fov,
         warp: Some(WarpReport {
             lambda,
             near_distance: lambda * depth,
             depth,
+            formula: formula.into(),
+            inputs,
         }),
         psm: None,
         focus_body: world_points,
@@ -233,7 +352,7 @@ mod tests {
                 light_to_world: world_to_light.inverse(),
                 z_max: -2.0,
                 depth: 2.0 / lambda,
-                lambda,
+                kappa: 1.0 / lambda,
                 left: -1.5,
                 right: 2.5,
                 y_min: -3.0,

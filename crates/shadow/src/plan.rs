@@ -3,16 +3,17 @@
 use glam::{DMat4, DVec2, DVec3, DVec4};
 use shadowlab_hull::{
     Aabb2, ConvexHull2, ConvexPolyhedron, MinAreaRect, Perspective, Tolerances, convex_hull_2d,
-    focus_body,
+    focus_body, visible_body,
 };
 use shadowlab_params::splits::SplitScheme;
-use shadowlab_params::{DepthRange, FrustumModel, HalfFov, LightAngle};
+use shadowlab_params::{DepthRange, FrustumModel, HalfFov, LightAngle, ParameterRule};
 
 use crate::error::ShadowError;
 use crate::frame::LightFrame;
 use crate::input::{FocusPolicy, PlanInput};
+use crate::parameter::{self, WarpGeometry};
 use crate::setup::{LightSetup, ShadowMapping, WarpReport};
-use crate::technique::{ProductionVariant, Technique, WarpChoice};
+use crate::technique::{Technique, WarpChoice};
 use crate::warp::{self, Extents};
 use crate::{logarithmic, psm};
 
@@ -28,7 +29,7 @@ pub fn plan(input: &PlanInput, technique: Technique) -> Result<LightSetup, Shado
         Technique::Uniform | Technique::Lispsm(_) => light_space_warp(input, technique),
         Technique::UniformLimited => uniform_limited(input),
         Technique::Psm => psm::plan(input),
-        Technique::Logarithmic => logarithmic::plan(input),
+        Technique::Logarithmic(choice) => logarithmic::plan(input, choice),
         Technique::Optimal(_) => Err(ShadowError::NotDefined {
             technique: "optimal",
             reason:
@@ -41,11 +42,13 @@ pub fn plan(input: &PlanInput, technique: Technique) -> Result<LightSetup, Shado
 }
 
 /// The vertices of the focus body B of `input`'s policy, in world space (the view frustum's
-/// corners in their order for [`FocusPolicy::ViewFrustum`]).
+/// corners in their order for [`FocusPolicy::View`]).
 pub(crate) fn focus_points(input: &PlanInput) -> Result<Vec<DVec3>, ShadowError> {
     match input.focus {
-        FocusPolicy::ViewFrustum => Ok(input.eye.frustum().corners().to_vec()),
-        FocusPolicy::Scene => Ok(focus_polyhedron(input)?.vertices().to_vec()),
+        FocusPolicy::View => Ok(input.eye.frustum().corners().to_vec()),
+        FocusPolicy::Light | FocusPolicy::ViewScene => {
+            Ok(focus_polyhedron(input)?.vertices().to_vec())
+        }
     }
 }
 
@@ -53,17 +56,19 @@ pub(crate) fn focus_points(input: &PlanInput) -> Result<Vec<DVec3>, ShadowError>
 pub(crate) fn focus_polyhedron(input: &PlanInput) -> Result<ConvexPolyhedron, ShadowError> {
     let frustum = input.eye.frustum();
     match input.focus {
-        FocusPolicy::ViewFrustum => Ok(ConvexPolyhedron::from_frustum(
+        FocusPolicy::View => Ok(ConvexPolyhedron::from_frustum(
             &frustum,
             &Tolerances::DEFAULT,
         )?),
-        FocusPolicy::Scene => focus_body(
+        FocusPolicy::Light => focus_body(
             &frustum,
             &input.scene,
             &input.light.hull_light(),
             &Tolerances::DEFAULT,
         )?
         .ok_or(ShadowError::EmptyFocusBody),
+        FocusPolicy::ViewScene => visible_body(&frustum, &input.scene, &Tolerances::DEFAULT)?
+            .ok_or(ShadowError::EmptyFocusBody),
     }
 }
 
@@ -94,31 +99,30 @@ pub(crate) fn view_model(input: &PlanInput) -> Result<(FrustumModel, f64), Shado
     Ok((model, half_fov))
 }
 
-/// Uniform and LiSPSM: P fitted to B in light space (LiSPSM §3.4–3.5).
+/// Uniform and LiSPSM: P fitted to B in light space (LiSPSM §3.4–3.5), LiSPSM's parameter as its
+/// choice computes it ([`crate::parameter`]).
 fn light_space_warp(input: &PlanInput, technique: Technique) -> Result<LightSetup, ShadowError> {
     let (frame, world_points, points) = focus_in_light_space(input, technique)?;
     let (model, half_fov) = view_model(input)?;
     let gamma = LightAngle::from_radians(frame.gamma())?;
-    let depth = Extents::of(&points).max.z - Extents::of(&points).min.z;
-    let kappa = match technique {
-        Technique::Lispsm(WarpChoice::Rule(rule)) => rule
-            .warp(&model, gamma)
-            .ok_or_else(|| ShadowError::NotDefined {
-                technique: "lispsm",
-                reason: format!(
-                    "the {} parameter needs γ > φ (γ = {:.4}°, φ = {:.4}°)",
-                    rule.key(),
-                    gamma.degrees(),
-                    half_fov.to_degrees()
-                ),
-            })?
-            .inverse_lambda(),
-        Technique::Lispsm(WarpChoice::Production(variant)) => {
-            production_kappa(variant, input, &points, gamma, depth)
-        }
-        _ => 0.0,
+    let choice = match technique {
+        Technique::Lispsm(choice) => choice,
+        _ => WarpChoice::Rule(ParameterRule::Uniform),
     };
-    let fitted = warp::fit(&points, 0.0, kappa)?;
+    let decision = parameter::decide(
+        choice,
+        &WarpGeometry {
+            input,
+            frame: &frame,
+            world_points: &world_points,
+            points: &points,
+            gamma,
+            model: &model,
+            half_fov,
+        },
+    )?;
+    let kappa = decision.kappa;
+    let fitted = warp::fit(&points, decision.reference, kappa)?;
     Ok(LightSetup {
         technique,
         mapping: ShadowMapping::Projective {
@@ -131,100 +135,12 @@ fn light_space_warp(input: &PlanInput, technique: Technique) -> Result<LightSetu
             lambda: 1.0 / kappa,
             near_distance: fitted.depth / kappa,
             depth: fitted.depth,
+            formula: decision.formula,
+            inputs: decision.inputs,
         }),
         psm: None,
         focus_body: world_points,
     })
-}
-
-/// Below this angle OSG's view-dependent shadow map is plainly orthographic (production-variants.md).
-const OSG_VDSM_ORTHOGRAPHIC_BELOW_DEGREES: f64 = 2.0;
-/// Filament switches the warp off when `sin γ` is at most this.
-const FILAMENT_NO_WARP_SIN: f64 = 0.02;
-/// Filament's "virtual" near and far hints, in metres.
-const FILAMENT_NEAR_HINT: f64 = 1.0;
-const FILAMENT_FAR_HINT: f64 = 100.0;
-/// OGRE's default optimisation factor and the angle inside which it strengthens the warp.
-const OGRE_FACTOR: f64 = 0.1;
-const OGRE_BOOST_RADIANS: f64 = 0.451;
-const OGRE_BOOST_MAX: f64 = 20.0;
-
-/// κ = d/n' of an engine's choice (production-variants.md), with B's depth `depth` along the warp
-/// axis. Where an engine divides by `sin γ = 0` (and so would produce NaN or infinity), the uniform
-/// map (κ = 0) is taken.
-fn production_kappa(
-    variant: ProductionVariant,
-    input: &PlanInput,
-    points: &[DVec3],
-    gamma: LightAngle,
-    depth: f64,
-) -> f64 {
-    let (zn, zf) = (input.eye.projection.near(), input.eye.projection.far());
-    let sin = gamma.sin();
-    let extents = Extents::of(points);
-    // z0: the eye depth where the view axis meets P's near plane (light-space z = z_max; the eye is
-    // the light-space origin and the view direction has z component −sin γ), at least the near
-    // plane; z1 = z0 + d sin γ.
-    let z0 = if sin > 0.0 {
-        (-extents.max.z / sin).max(zn)
-    } else {
-        zn
-    };
-    let z1 = z0 + depth * sin;
-    let n = match variant {
-        ProductionVariant::Filament => {
-            if sin <= FILAMENT_NO_WARP_SIN {
-                return 0.0;
-            }
-            let dzn = (FILAMENT_NEAR_HINT - zn).max(0.0);
-            let ratio = 3.0 * dzn / (zf - zn);
-            if ratio >= 2.0 {
-                return 0.0;
-            }
-            ((z0 + (FILAMENT_NEAR_HINT * FILAMENT_FAR_HINT).sqrt()) / sin).max(dzn / (2.0 - ratio))
-        }
-        ProductionVariant::Ogre => {
-            let e_z = extents.max.z.abs();
-            let cos = gamma.cos();
-            let cos_boost = OGRE_BOOST_RADIANS.cos();
-            let boost = if cos > cos_boost {
-                1.0 + OGRE_BOOST_MAX * (cos - cos_boost) / (1.0 - cos_boost)
-            } else {
-                1.0
-            };
-            (e_z + (zn * zf).sqrt()) * OGRE_FACTOR * boost
-        }
-        ProductionVariant::Osg => {
-            if sin == 0.0 {
-                return 0.0;
-            }
-            let zn_prime = zn / sin;
-            let zf_prime = zn_prime + depth * sin;
-            (zn_prime + (zn_prime * zf_prime).sqrt()) / sin
-        }
-        ProductionVariant::Authors2006 => {
-            match shadowlab_params::lispsm::n_general(depth, z0, z1) {
-                Ok(n) => n,
-                Err(_) => return 0.0,
-            }
-        }
-        ProductionVariant::OsgViewDependent => {
-            if gamma.degrees() < OSG_VDSM_ORTHOGRAPHIC_BELOW_DEGREES {
-                return 0.0;
-            }
-            // In a light clip space of depth 2 spanning B along the warp axis; the eye's position
-            // there is −1 at P's near plane (z_max) and +1 at its far plane.
-            let eye_y = 2.0 * extents.max.z / depth - 1.0;
-            let cot = gamma.cos() / sin;
-            let n_clip = (30f64.to_radians().tan() * cot * cot).max((-1.0 - eye_y).max(0.05));
-            n_clip * depth / 2.0
-        }
-    };
-    if n.is_finite() && n > 0.0 {
-        depth / n
-    } else {
-        0.0
-    }
 }
 
 /// The standard shadow map with CG06's frustum limiting: the window is the minimum-area rectangle

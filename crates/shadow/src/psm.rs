@@ -28,6 +28,7 @@
 use glam::{DMat3, DMat4, DVec3, DVec4};
 use shadowlab_hull::{
     ConvexPolyhedron, LightSpace, NdcDepth, Perspective, Tolerances, ViewPose, psm_near_body,
+    visible_body,
 };
 
 use crate::error::ShadowError;
@@ -47,7 +48,7 @@ pub(crate) fn plan(input: &PlanInput) -> Result<LightSetup, ShadowError> {
 }
 
 /// Plans PSM; `shift` forces the virtual camera's shift Δ (at least what H requires is used when
-/// it is `None`). With `Some(Δ)` and B = V (FocusPolicy::ViewFrustum) this is the configuration of
+/// it is `None`). With `Some(Δ)` and B = V (FocusPolicy::View) this is the configuration of
 /// formulas.md §3.3's equivalence: PSM shifted by Δ equals LiSPSM with `n = zn + Δ`.
 ///
 /// # Errors
@@ -58,8 +59,8 @@ pub fn plan_with_shift(input: &PlanInput, shift: Option<f64>) -> Result<LightSet
     let (pose, projection) = (eye.pose, eye.projection);
     let frustum = eye.frustum();
     let body: Vec<DVec3> = match input.focus {
-        FocusPolicy::ViewFrustum => frustum.corners().to_vec(),
-        FocusPolicy::Scene => psm_near_body(
+        FocusPolicy::View => frustum.corners().to_vec(),
+        FocusPolicy::Light => psm_near_body(
             &frustum,
             &input.scene,
             &input.light.hull_light(),
@@ -68,6 +69,10 @@ pub fn plan_with_shift(input: &PlanInput, shift: Option<f64>) -> Result<LightSet
         .ok_or(ShadowError::EmptyFocusBody)?
         .vertices()
         .to_vec(),
+        FocusPolicy::ViewScene => visible_body(&frustum, &input.scene, &Tolerances::DEFAULT)?
+            .ok_or(ShadowError::EmptyFocusBody)?
+            .vertices()
+            .to_vec(),
     };
     let (e, v) = (pose.eye(), pose.forward());
     let near = input
@@ -128,7 +133,7 @@ pub fn plan_with_shift(input: &PlanInput, shift: Option<f64>) -> Result<LightSet
         }
         straight.push(q.truncate() / q.w);
     }
-    let fitted = warp::fit(&straight, 0.0, 0.0)?;
+    let fitted = warp::fit(&straight, warp::Reference::EYE, 0.0)?;
     let (_, half_fov) = view_model(input)?;
     let gamma = shadowlab_hull::light_view_angle(v, input.light.toward_from(e))?;
     Ok(LightSetup {

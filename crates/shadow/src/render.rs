@@ -22,27 +22,52 @@ use crate::setup::ShadowMapping;
 use crate::snap::snap_to_texels;
 use crate::technique::Technique;
 
-/// How a frame's shadows are made and read.
+/// How one light's maps are planned: the technique, the z-partitions, the focus body and the
+/// scene-optimized map's settings.
 #[derive(Clone, Debug, PartialEq)]
-pub struct FrameOptions {
-    /// The technique of every light's maps.
+pub struct PlanOptions {
+    /// The technique of every map.
     pub technique: Technique,
-    /// Side of each shadow map, in texels.
-    pub resolution: u32,
-    /// The maps' depth format.
-    pub format: DepthFormat,
     /// Number of z-partitions (1: one map per light).
     pub partitions: usize,
     /// How the depth range is split when `partitions > 1`.
     pub splits: Splits,
+    /// The body B each map is fitted to.
+    pub focus: FocusPolicy,
+    /// The scene-optimized map's settings (read-back size, initial map, iterations, border) when
+    /// the technique is [`Technique::Optimal`]; their step direction is the technique's.
+    pub optimal: OptimalOptions,
+}
+
+impl PlanOptions {
+    /// One map per light by `technique`, focused on B = conv(V ∪ l) ∩ S ∩ L, the optimizer's
+    /// defaults.
+    #[must_use]
+    pub fn new(technique: Technique) -> Self {
+        Self {
+            technique,
+            partitions: 1,
+            splits: Splits::Practical { weight: 0.5 },
+            focus: FocusPolicy::Light,
+            optimal: OptimalOptions::default(),
+        }
+    }
+}
+
+/// How a frame's shadows are made and read.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FrameOptions {
+    /// How each light's maps are planned.
+    pub plan: PlanOptions,
+    /// Side of each shadow map, in texels.
+    pub resolution: u32,
+    /// The maps' depth format.
+    pub format: DepthFormat,
     /// Bias and filter.
     pub lookup: Lookup,
     /// Texel snapping against shimmer ([`crate::snap_to_texels`]): each map's window moved so the
     /// world origin falls on the corner of this many texels' grid; 0 leaves the windows alone.
     pub snap_texels: u32,
-    /// The scene-optimized map's settings (read-back size, initial map, iterations, border) when
-    /// the technique is [`Technique::Optimal`]; their step direction is the technique's.
-    pub optimal: OptimalOptions,
 }
 
 /// One light's shadow: its partitions and their maps.
@@ -156,37 +181,35 @@ pub fn scene_input(
     })
 }
 
-/// Plans one light of `scene`: `partitions` z-partitions split by `splits` (one: the whole view),
-/// each with `technique`, PSM's near plane at `nearest_visible_depth`. [`Technique::Optimal`] is
-/// planned from the scene itself with `optimal`'s settings and the technique's step direction: a
-/// low-resolution eye pass, then each partition optimized on its own samples
-/// ([`crate::optimal::plan_partitions`]); other techniques ignore `optimal`.
+/// Plans one light of `scene` as `options` says: `partitions` z-partitions split by `splits` (one:
+/// the whole view), each with the technique, focused on `focus`, PSM's near plane at
+/// `nearest_visible_depth`. [`Technique::Optimal`] is planned from the scene itself with the
+/// optimizer's settings and the technique's step direction: a low-resolution eye pass, then each
+/// partition optimized on its own samples ([`crate::optimal::plan_partitions`]).
 ///
 /// # Errors
 /// As [`plan_partitions`] (or [`crate::optimal::plan_partitions`]); an invalid scene box.
 pub fn plan_light(
     scene: &Scene,
     light: &SceneLight,
-    technique: Technique,
-    splits: Splits,
-    partitions: usize,
+    options: &PlanOptions,
     nearest_visible_depth: Option<f64>,
-    optimal: &OptimalOptions,
 ) -> Result<Vec<Partition>, ShadowError> {
-    let input = scene_input(scene, light, nearest_visible_depth, FocusPolicy::Scene)?;
-    if let Technique::Optimal(direction) = technique {
-        let options = OptimalOptions {
+    let input = scene_input(scene, light, nearest_visible_depth, options.focus)?;
+    let partitions = options.partitions.max(1);
+    if let Technique::Optimal(direction) = options.technique {
+        let optimal = OptimalOptions {
             direction,
-            ..*optimal
+            ..options.optimal
         };
         return Ok(
-            optimal::plan_partitions(scene, &input, splits, partitions.max(1), &options)?
+            optimal::plan_partitions(scene, &input, options.splits, partitions, &optimal)?
                 .into_iter()
                 .map(|(partition, _)| partition)
                 .collect(),
         );
     }
-    plan_partitions(&input, technique, splits, partitions.max(1))
+    plan_partitions(&input, options.technique, options.splits, partitions)
 }
 
 /// Renders `scene` with shadows made as `options` says: the eye pass, then [`render_shadows`].
@@ -228,9 +251,9 @@ pub fn render_shadows(
     let depths = eye_depths(eye, &scene_eye(scene));
     let mut timings = Timings::default();
     let built;
-    let bvh = match (options.technique, bvh) {
+    let bvh = match (options.plan.technique, bvh) {
         (_, Some(bvh)) => Some(bvh),
-        (Technique::Logarithmic, None) => {
+        (Technique::Logarithmic(_), None) => {
             built = Bvh::new(scene.mesh.positions(), scene.mesh.triangles())
                 .map_err(|e| ShadowError::Trace(e.to_string()))?;
             Some(&built)
@@ -245,15 +268,7 @@ pub fn render_shadows(
     let mut lights = Vec::with_capacity(scene.lights.len());
     for scene_light in &scene.lights {
         let start = Instant::now();
-        let mut partitions = plan_light(
-            scene,
-            scene_light,
-            options.technique,
-            options.splits,
-            options.partitions,
-            nearest_visible,
-            &options.optimal,
-        )?;
+        let mut partitions = plan_light(scene, scene_light, &options.plan, nearest_visible)?;
         if options.snap_texels > 0 {
             for partition in &mut partitions {
                 partition.setup =

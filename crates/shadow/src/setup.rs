@@ -52,8 +52,8 @@ impl ShadowMapping {
     }
 }
 
-/// The warp a light-space technique chose.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// The warp a light-space technique chose, and what it chose it from.
+#[derive(Clone, Debug, PartialEq)]
 pub struct WarpReport {
     /// λ = n'/d; `f64::INFINITY` for the uniform map.
     pub lambda: f64,
@@ -62,6 +62,10 @@ pub struct WarpReport {
     pub near_distance: f64,
     /// d, B's extent along the warp axis.
     pub depth: f64,
+    /// The rule's formula and its source, in words.
+    pub formula: String,
+    /// The inputs the rule used, by name (`z_n`, `z_f`, `z0`, `z1`, `d`, `gamma_degrees`, …).
+    pub inputs: Vec<(&'static str, f64)>,
 }
 
 /// A planned shadow map: how to render it and what was decided.

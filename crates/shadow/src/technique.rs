@@ -2,10 +2,10 @@
 
 use std::fmt;
 
-use shadowlab_params::ParameterRule;
+use shadowlab_params::{ParameterRule, WarpParameter};
 
 /// A shadow-map technique: how the light's view and projection are built.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Technique {
     /// The standard shadow map, focused on the body B: an orthographic (spot: perspective) fit of
     /// B in LiSPSM's light space, i.e. LiSPSM with `n = ∞`.
@@ -22,8 +22,9 @@ pub enum Technique {
     /// by a rule.
     Lispsm(WarpChoice),
     /// The ideal parameterisation of LiSPSM §4: `s = ln(z/zn)/ln(zf/zn)` along the view axis,
-    /// computed exactly in software (it is not a projective map).
-    Logarithmic,
+    /// computed exactly in software (it is not a projective map), with its reference point chosen
+    /// as [`LogarithmicChoice`] says.
+    Logarithmic(LogarithmicChoice),
     /// Chong and Gortler's scene-optimized shadow map (CG06 Algorithm 1): P chosen by gradient
     /// descent to minimise the texel footprint at the pixels near shadow boundaries of a
     /// low-resolution eye pass ([`crate::optimal`]). Needs the scene's geometry, so it is planned by
@@ -55,13 +56,53 @@ impl StepDirection {
     }
 }
 
-/// How LiSPSM's `n` (or λ = n/d) is chosen.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+/// How LiSPSM's `n` (or λ = n/d) is chosen. Each choice computes what its source computes, in the
+/// source's own units ([`crate::parameter`]); `inspect` prints the inputs and the formula.
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub enum WarpChoice {
-    /// A rule of the papers, as `shadowlab-params` evaluates it in the 2-D model of the view.
+    /// A rule of the papers. `lispsm` and `lispsm_dz` give `n` in world units from the camera's
+    /// near and far (and B's own depth d), as LiSPSM §4.4 writes them; the rules defined by a
+    /// unit-free λ in the 2-D model of the view (CAD eq. 16, GMNPR eq. 8, GLPR, the minimax, and
+    /// uniform) keep that λ and use it with B's depth, `n = λ·d`.
     Rule(ParameterRule),
+    /// shadowlab's own transfer of LiSPSM's parameter: GMNPR eq. 9's λ (the paper's `n_opt/sin γ`
+    /// over the 2-D model's depth) used with B's actual depth. Equal to `lispsm` when B = V in the
+    /// light–view plane; apart elsewhere (what every LiSPSM map used before `lispsm` meant the
+    /// paper's n).
+    LispsmModel,
     /// A production engine's choice (`shared/docs/production-variants.md`).
     Production(ProductionVariant),
+    /// λ as the user states it (`--lambda`, `lispsm:lambda=L`); ∞ is the uniform map.
+    Lambda(WarpParameter),
+    /// The warp near distance n as the user states it, in light-space units (world units for a
+    /// directional light; `--n`, `lispsm:n=N`); ∞ is the uniform map.
+    NearDistance(NearDistance),
+}
+
+/// A warp near distance the user stated: positive, possibly infinite (the uniform map).
+#[derive(Clone, Copy, Debug, PartialEq, PartialOrd)]
+pub struct NearDistance(f64);
+
+impl NearDistance {
+    /// `n ∈ (0, ∞]`.
+    ///
+    /// # Errors
+    /// A message naming `n` and its range.
+    pub fn new(n: f64) -> Result<Self, String> {
+        if n > 0.0 {
+            Ok(Self(n))
+        } else {
+            Err(format!(
+                "n = {n} must be greater than 0 (inf means the uniform map)"
+            ))
+        }
+    }
+
+    /// The distance.
+    #[must_use]
+    pub fn get(self) -> f64 {
+        self.0
+    }
 }
 
 /// The LiSPSM parameter choices that engines ship, to measure against the papers' optimum.
@@ -73,10 +114,16 @@ pub enum ProductionVariant {
     /// OGRE 1.x: `(|e_z| + √(zn·zf))·0.1`, multiplied by `1 + 20·(cos γ − cos 25.8°)/(1 − cos 25.8°)`
     /// inside 25.8°.
     Ogre,
-    /// The authors' 2004 code as ported in OpenSceneGraph: `zn' = zn/sin γ`,
-    /// `zf' = zn' + d sin γ`, `n = (zn' + √(zn'·zf'))/sin γ`.
+    /// The authors' 2004 code (the excerpt kept in OpenSceneGraph's
+    /// `LightSpacePerspectiveShadowMap.cpp`): `zn' = zn/sin γ` with zn the camera's near,
+    /// `zf' = zn' + d sin γ`, `n = (zn' + √(zn'·zf'))/sin γ`. (OSG's own port measures its near
+    /// distance in the light's clip space, which this does not reproduce.)
     Osg,
-    /// The authors' 2006 code (the Δz form on B's actual depth): `n = d/(√(z1/z0) − 1)`.
+    /// The authors' 2006 code, `calcNoptGeneral` as OpenSceneGraph's
+    /// `LightSpacePerspectiveShadowMap.cpp` carries it: `n = d/(√(z1/z0) − 1)` with z0 the eye
+    /// depth of B's nearest point and `z1 = z0 + d sin γ`; where `z1/z0 ≤ 1`, z0 and z1 are B's
+    /// nearest and farthest eye depths (z0 at least 0.1, z1 at least z0 + 0.1). Its projection
+    /// reference point lies over B's nearest point, not over the eye.
     Authors2006,
     /// OpenSceneGraph's ViewDependentShadowMap: `n = tan 30°·cot² γ` in a light clip space of
     /// depth 2, at least `max(−1 − eye_y, 0.05)`; orthographic below 2°.
@@ -110,30 +157,129 @@ impl WarpChoice {
     /// The paper's own choice, LiSPSM's `n_opt/sin γ`.
     pub const PAPER: Self = Self::Rule(ParameterRule::Lispsm);
 
-    /// Every choice: the rules of `shadowlab-params`, then the production variants.
+    /// Every named choice: the rules of `shadowlab-params`, shadowlab's model transfer, then the
+    /// production variants (the stated λ and n are not named).
     #[must_use]
-    pub fn all() -> Vec<Self> {
+    pub fn named() -> Vec<Self> {
         ParameterRule::ALL
             .into_iter()
             .map(Self::Rule)
+            .chain([Self::LispsmModel])
             .chain(ProductionVariant::ALL.into_iter().map(Self::Production))
             .collect()
     }
 
-    /// Its key: the rule's key (`lispsm`, `lispsm_dz`, `cad`, …, `minimax`) or the variant's.
-    #[must_use]
-    pub fn key(self) -> &'static str {
+    /// The choice a parameter spec names: a rule's key (`lispsm`, `lispsm_dz`, `cad`, …,
+    /// `minimax`), `model`, an engine's key, `lambda=L` or `n=N`.
+    ///
+    /// # Errors
+    /// An unknown name or a bad number, with the known names.
+    pub fn parse(spec: &str) -> Result<Self, String> {
+        if let Some(value) = stated(spec, "lambda")? {
+            return WarpParameter::from_lambda(value)
+                .map(Self::Lambda)
+                .map_err(|e| e.to_string());
+        }
+        if let Some(value) = stated(spec, "n")? {
+            return NearDistance::new(value).map(Self::NearDistance);
+        }
+        Self::named()
+            .into_iter()
+            .find(|c| c.to_string() == spec)
+            .ok_or_else(|| {
+                let known: Vec<String> = Self::named().iter().map(ToString::to_string).collect();
+                format!(
+                    "unknown parameter {spec:?} for lispsm; known: {}, lambda=L, n=N",
+                    known.join(", ")
+                )
+            })
+    }
+}
+
+impl fmt::Display for WarpChoice {
+    /// The spec [`Self::parse`] reads back.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            Self::Rule(rule) => rule.key(),
-            Self::Production(variant) => variant.key(),
+            Self::Rule(rule) => f.write_str(rule.key()),
+            Self::LispsmModel => f.write_str("model"),
+            Self::Production(variant) => f.write_str(variant.key()),
+            Self::Lambda(warp) => write!(f, "lambda={}", warp.lambda()),
+            Self::NearDistance(n) => write!(f, "n={}", n.get()),
         }
     }
+}
 
-    /// The choice with this key.
-    #[must_use]
-    pub fn from_key(key: &str) -> Option<Self> {
-        Self::all().into_iter().find(|c| c.key() == key)
+/// How the logarithmic map's reference point — the point its logarithm is measured from, at
+/// `n' = λ·d` beyond B's near plane along the warp axis — is chosen ([`crate::logarithmic`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub enum LogarithmicChoice {
+    /// shadowlab's rule: at the eye (LiSPSM §4, Lloyd et al. 2008), which is where the map's error
+    /// is the same at every depth, wherever the eye lies at least a small margin beyond B's near
+    /// plane; elsewhere held outside B by a floor that grows to infinity (the uniform map) as
+    /// γ → 0 ([`crate::logarithmic::reference_lambda`]).
+    #[default]
+    Eye,
+    /// λ as the user states it; ∞ is the uniform map.
+    Lambda(WarpParameter),
+    /// n', the reference point's distance beyond B's near plane, as the user states it.
+    NearDistance(NearDistance),
+    /// Lloyd et al.'s face partitioning (EGSR 2006 §5.2; TOG 2008): the view frustum split by the
+    /// faces of V that face away from the light, each part with its own map whose logarithm is
+    /// measured from the eye ([`crate::faces`]).
+    Faces,
+}
+
+impl LogarithmicChoice {
+    /// The choice a parameter spec names: `eye`, `faces`, `lambda=L` or `n=N`.
+    ///
+    /// # Errors
+    /// An unknown name or a bad number.
+    pub fn parse(spec: &str) -> Result<Self, String> {
+        if let Some(value) = stated(spec, "lambda")? {
+            return WarpParameter::from_lambda(value)
+                .map(Self::Lambda)
+                .map_err(|e| e.to_string());
+        }
+        if let Some(value) = stated(spec, "n")? {
+            return NearDistance::new(value).map(Self::NearDistance);
+        }
+        match spec {
+            "eye" => Ok(Self::Eye),
+            "faces" => Ok(Self::Faces),
+            _ => Err(format!(
+                "unknown parameter {spec:?} for logarithmic; known: eye, faces, lambda=L, n=N"
+            )),
+        }
     }
+}
+
+impl fmt::Display for LogarithmicChoice {
+    /// The spec [`Self::parse`] reads back.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::Eye => f.write_str("eye"),
+            Self::Faces => f.write_str("faces"),
+            Self::Lambda(warp) => write!(f, "lambda={}", warp.lambda()),
+            Self::NearDistance(n) => write!(f, "n={}", n.get()),
+        }
+    }
+}
+
+/// The number after `name=` in `spec`, `None` if `spec` does not start so.
+fn stated(spec: &str, name: &str) -> Result<Option<f64>, String> {
+    let Some(value) = spec
+        .strip_prefix(name)
+        .and_then(|rest| rest.strip_prefix('='))
+    else {
+        return Ok(None);
+    };
+    value
+        .trim()
+        .parse::<f64>()
+        .ok()
+        .filter(|v| !v.is_nan())
+        .map(Some)
+        .ok_or_else(|| format!("{value:?} in {spec:?} is not a number"))
 }
 
 impl Technique {
@@ -147,6 +293,9 @@ impl Technique {
         "optimal",
     ];
 
+    /// The logarithmic map with shadowlab's reference rule.
+    pub const LOGARITHMIC: Self = Self::Logarithmic(LogarithmicChoice::Eye);
+
     /// Its key: `uniform`, `uniform_limited`, `psm`, `lispsm`, `logarithmic`, `optimal`.
     #[must_use]
     pub fn key(self) -> &'static str {
@@ -155,14 +304,29 @@ impl Technique {
             Self::UniformLimited => "uniform_limited",
             Self::Psm => "psm",
             Self::Lispsm(_) => "lispsm",
-            Self::Logarithmic => "logarithmic",
+            Self::Logarithmic(_) => "logarithmic",
             Self::Optimal(_) => "optimal",
         }
     }
 
-    /// The technique named `key`, with LiSPSM's parameter, or the scene-optimized map's step
-    /// direction (`paper` or `refit`), named by `parameter` (default: the paper's). `Err` says
-    /// which name is unknown and lists the known ones.
+    /// Its parameter spec where it has one other than the default (`minimax`, `lambda=0.3`,
+    /// `faces`, `refit`), `None` for the default.
+    #[must_use]
+    pub fn parameter(self) -> Option<String> {
+        match self {
+            Self::Lispsm(choice) if choice != WarpChoice::PAPER => Some(choice.to_string()),
+            Self::Logarithmic(choice) if choice != LogarithmicChoice::Eye => {
+                Some(choice.to_string())
+            }
+            Self::Optimal(StepDirection::Refitted) => Some(StepDirection::Refitted.key().into()),
+            _ => None,
+        }
+    }
+
+    /// The technique named `key` with the parameter named by `parameter` (default: the paper's):
+    /// LiSPSM's ([`WarpChoice::parse`]), the logarithmic map's reference
+    /// ([`LogarithmicChoice::parse`]), or the scene-optimized map's step direction (`paper` or
+    /// `refit`). `Err` says which name is unknown and lists the known ones.
     ///
     /// # Errors
     /// An unknown technique or parameter, or a parameter given to a technique without one.
@@ -172,7 +336,7 @@ impl Technique {
             "uniform_limited" => Self::UniformLimited,
             "psm" => Self::Psm,
             "lispsm" => Self::Lispsm(WarpChoice::PAPER),
-            "logarithmic" => Self::Logarithmic,
+            "logarithmic" => Self::LOGARITHMIC,
             "optimal" => Self::Optimal(StepDirection::Paper),
             _ => {
                 return Err(format!(
@@ -183,23 +347,15 @@ impl Technique {
         };
         match (technique, parameter) {
             (_, None) => Ok(technique),
-            (Self::Lispsm(_), Some(p)) => {
-                WarpChoice::from_key(p).map(Self::Lispsm).ok_or_else(|| {
-                    let known: Vec<_> =
-                        WarpChoice::all().into_iter().map(WarpChoice::key).collect();
-                    format!(
-                        "unknown parameter {p:?} for lispsm; known: {}",
-                        known.join(", ")
-                    )
-                })
-            }
+            (Self::Lispsm(_), Some(p)) => WarpChoice::parse(p).map(Self::Lispsm),
+            (Self::Logarithmic(_), Some(p)) => LogarithmicChoice::parse(p).map(Self::Logarithmic),
             (Self::Optimal(_), Some(p)) => [StepDirection::Paper, StepDirection::Refitted]
                 .into_iter()
                 .find(|d| d.key() == p)
                 .map(Self::Optimal)
                 .ok_or_else(|| format!("unknown step {p:?} for optimal; known: paper, refit")),
             (_, Some(p)) => Err(format!(
-                "the parameter {p:?} applies to lispsm and optimal only, not to {key}"
+                "the parameter {p:?} applies to lispsm, logarithmic and optimal only, not to {key}"
             )),
         }
     }
@@ -207,10 +363,10 @@ impl Technique {
 
 impl fmt::Display for Technique {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            Self::Lispsm(choice) => write!(f, "lispsm ({})", choice.key()),
-            Self::Optimal(StepDirection::Refitted) => f.write_str("optimal (refit)"),
-            other => f.write_str(other.key()),
+        match (self, self.parameter()) {
+            (Self::Lispsm(_), None) => f.write_str("lispsm (lispsm)"),
+            (_, Some(parameter)) => write!(f, "{} ({parameter})", self.key()),
+            (_, None) => f.write_str(self.key()),
         }
     }
 }

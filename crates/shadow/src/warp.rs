@@ -34,12 +34,8 @@ const FLAT_FRACTION: f64 = 1e-12;
 /// A fitted warp in light space.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct Warp {
-    /// `κ = 1/λ = d/n'`: 0 for the uniform map.
-    pub(crate) kappa: f64,
     /// `d`, B's extent along light-space z: P's depth.
     pub(crate) depth: f64,
-    /// The largest light-space z of B: P's near plane.
-    pub(crate) z_max: f64,
     /// Light space → GL clip space of the shadow map.
     pub(crate) matrix: DMat4,
 }
@@ -70,12 +66,26 @@ impl Extents {
     }
 }
 
-/// Fits P with `κ = 1/λ` to the light-space points of B (LiSPSM §3.4–3.5), the projection
-/// reference point taking its x from `eye_x`.
+/// Where P's projection reference point p sits across the warp axis, in light space.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Reference {
+    /// p's lateral coordinate.
+    pub(crate) x: f64,
+    /// p's coordinate along the light; `None`: the middle of B's range (LiSPSM §3.4).
+    pub(crate) y: Option<f64>,
+}
+
+impl Reference {
+    /// LiSPSM §3.4's p: x from the viewpoint (the light-space origin), y the middle of B.
+    pub(crate) const EYE: Self = Self { x: 0.0, y: None };
+}
+
+/// Fits P with `κ = 1/λ` to the light-space points of B (LiSPSM §3.4–3.5), its projection
+/// reference point placed across the warp axis as `reference` says.
 ///
 /// # Errors
 /// [`ShadowError::FlatFocusBody`] if B has no extent along an axis the map spans.
-pub(crate) fn fit(points: &[DVec3], eye_x: f64, kappa: f64) -> Result<Warp, ShadowError> {
+pub(crate) fn fit(points: &[DVec3], reference: Reference, kappa: f64) -> Result<Warp, ShadowError> {
     debug_assert!(kappa >= 0.0 && kappa.is_finite());
     let extents = Extents::of(points);
     let flat = FLAT_FRACTION * extents.largest();
@@ -84,7 +94,8 @@ pub(crate) fn fit(points: &[DVec3], eye_x: f64, kappa: f64) -> Result<Warp, Shad
         return Err(ShadowError::FlatFocusBody { axis: "warp axis" });
     }
     let z_max = extents.max.z;
-    let p_y = 0.5 * (extents.min.y + extents.max.y);
+    let eye_x = reference.x;
+    let p_y = reference.y.unwrap_or(0.5 * (extents.min.y + extents.max.y));
     // w = 1 + κτ with τ = (z_max − z)/d: an affine function of the light-space point.
     let w_row = DVec4::new(0.0, 0.0, -kappa / depth, 1.0 + kappa * z_max / depth);
     let w = |p: DVec3| w_row.dot(p.extend(1.0));
@@ -117,9 +128,7 @@ pub(crate) fn fit(points: &[DVec3], eye_x: f64, kappa: f64) -> Result<Warp, Shad
     );
     let z_row = -(DVec4::new(0.0, 2.0, 0.0, -2.0 * p_y) - (b + t) * w_row) / (t - b);
     Ok(Warp {
-        kappa,
         depth,
-        z_max,
         matrix: DMat4::from_cols(x_row, y_row, z_row, w_row).transpose(),
     })
 }

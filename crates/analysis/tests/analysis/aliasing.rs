@@ -219,7 +219,7 @@ fn configuration(
         )
         .unwrap(),
         nearest_visible_depth: None,
-        focus: FocusPolicy::ViewFrustum,
+        focus: FocusPolicy::View,
     };
     let camera = Camera {
         pose,
@@ -236,7 +236,7 @@ fn light_space_techniques() -> Vec<Technique> {
     ParameterRule::ALL
         .into_iter()
         .map(|r| Technique::Lispsm(WarpChoice::Rule(r)))
-        .chain([Technique::Uniform, Technique::Logarithmic])
+        .chain([Technique::Uniform, Technique::LOGARITHMIC])
         .collect()
 }
 
@@ -396,15 +396,12 @@ fn footprints_are_the_same_on_any_thread_count() {
         .iter()
         .filter(|t| **t != shadowlab_raster::NO_TRIANGLE)
         .count();
-    for technique in [Technique::Lispsm(WarpChoice::PAPER), Technique::Logarithmic] {
+    for technique in [Technique::Lispsm(WarpChoice::PAPER), Technique::LOGARITHMIC] {
         let partitions = shadowlab_shadow::plan_light(
             &scene,
             &scene.lights[0],
-            technique,
-            shadowlab_shadow::Splits::Uniform,
-            1,
+            &shadowlab_shadow::PlanOptions::new(technique),
             None,
-            &shadowlab_shadow::optimal::OptimalOptions::default(),
         )
         .unwrap_or_else(|e| panic!("{technique}: {e}"));
         let setup = &partitions[0].setup;

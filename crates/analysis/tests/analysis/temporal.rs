@@ -27,7 +27,7 @@ fn the_walk_starts_at_the_scene_camera() {
 fn a_thin_sample_window_keeps_the_initial_map() {
     let mut scene = builtin_scene("outdoor").unwrap();
     scene.camera.pose = pose_at(&scene, 16).unwrap();
-    let input = scene_input(&scene, &scene.lights[0], None, FocusPolicy::Scene).unwrap();
+    let input = scene_input(&scene, &scene.lights[0], None, FocusPolicy::Light).unwrap();
     // The case that failed: frame 16 of the walk with a 512² initial map (the default then),
     // which sees the shadows of only a few of the thin poles.
     let options = OptimalOptions {

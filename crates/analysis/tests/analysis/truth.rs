@@ -8,7 +8,7 @@ use shadowlab_hull::{Perspective, ViewPose};
 use shadowlab_raster::{DepthFormat, NO_TRIANGLE, Triangles};
 use shadowlab_scene::{Mesh, SceneLight, procedural};
 use shadowlab_shadow::{
-    Bias, Filter, Lookup, MapOptions, ShadowMap, Splits, Technique, eye_pass, plan_light,
+    Bias, Filter, Lookup, MapOptions, PlanOptions, ShadowMap, Technique, eye_pass, plan_light,
 };
 use shadowlab_trace::Bvh;
 
@@ -103,11 +103,8 @@ fn facing_away_shadows_only_through_occlusion_as_the_lookup_does() {
     let setup = &plan_light(
         &scene,
         &scene.lights[0],
-        Technique::Uniform,
-        Splits::Uniform,
-        1,
+        &PlanOptions::new(Technique::Uniform),
         None,
-        &shadowlab_shadow::optimal::OptimalOptions::default(),
     )
     .unwrap()[0]
         .setup;

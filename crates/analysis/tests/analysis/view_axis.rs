@@ -18,7 +18,7 @@ fn at_90_degrees_the_measurement_lies_on_the_closed_form() {
     let techniques = [
         Technique::Uniform,
         Technique::Lispsm(WarpChoice::PAPER),
-        Technique::Logarithmic,
+        Technique::LOGARITHMIC,
         Technique::Psm,
     ];
     let all = curves(&scene, &techniques).unwrap();

@@ -114,9 +114,12 @@
 //! an entry's copies together) may exceed [`crate::procedural::MAX_TRIANGLES`] triangles.
 //!
 //! # `[shadow]` (optional table)
-//! Suggestions for the shadow technique, passed on unvalidated as [`ShadowSettings`]; the
-//! `shadow` crate and the command-line tool check them. All optional: `technique`, `parameter`,
-//! `split_scheme`, `bias`, `filter` (strings), `resolution`, `splits` (non-negative integers).
+//! Suggestions for the shadow technique, passed on as [`ShadowSettings`]; the `shadow` crate and
+//! the command-line tool check them (numbers must be finite here). All optional, each named as
+//! its command-line flag is: `technique`, `parameter`, `focus`, `split_scheme`, `bias`, `filter`,
+//! `optimal_readback` (`"WxH"`) (strings); `lambda`, `n`, `optimal_border` (numbers);
+//! `resolution`, `splits`, `optimal_initial`, `optimal_iterations` (non-negative integers). At
+//! most one of `parameter`, `lambda` and `n`.
 //!
 //! # Errors
 //! Every error names the file. TOML errors (syntax, unknown fields, wrong types, unknown shapes or
@@ -143,7 +146,7 @@ use crate::error::SceneError;
 use crate::scene::SceneLight;
 use crate::scene::{Scene, ShadowSettings};
 
-use self::checks::Checker;
+use self::checks::{Checker, field};
 use self::raw::{RawScene, RawShadow};
 
 /// The camera's default vertical field of view, in degrees.
@@ -243,12 +246,21 @@ pub(crate) fn parse(
         camera,
         lights,
         mesh,
-        shadow: shadow_settings(raw.shadow),
+        shadow: shadow_settings(checker, raw.shadow)?,
     })
 }
 
-fn shadow_settings(raw: RawShadow) -> ShadowSettings {
-    ShadowSettings {
+/// The `[shadow]` table as it is, but for its numbers, which must be finite.
+fn shadow_settings(checker: Checker<'_>, raw: RawShadow) -> Result<ShadowSettings, SceneError> {
+    let finite = |name: &str, value: Option<f64>| {
+        value
+            .map(|v| checker.finite(&field("shadow", name), v))
+            .transpose()
+    };
+    Ok(ShadowSettings {
+        lambda: finite("lambda", raw.lambda)?,
+        n: finite("n", raw.n)?,
+        optimal_border: finite("optimal_border", raw.optimal_border)?,
         technique: raw.technique,
         parameter: raw.parameter,
         resolution: raw.resolution,
@@ -256,5 +268,9 @@ fn shadow_settings(raw: RawShadow) -> ShadowSettings {
         split_scheme: raw.split_scheme,
         bias: raw.bias,
         filter: raw.filter,
-    }
+        focus: raw.focus,
+        optimal_readback: raw.optimal_readback,
+        optimal_initial: raw.optimal_initial,
+        optimal_iterations: raw.optimal_iterations,
+    })
 }

@@ -206,4 +206,11 @@ pub(super) struct RawShadow {
     pub(super) split_scheme: Option<String>,
     pub(super) bias: Option<String>,
     pub(super) filter: Option<String>,
+    pub(super) lambda: Option<f64>,
+    pub(super) n: Option<f64>,
+    pub(super) focus: Option<String>,
+    pub(super) optimal_readback: Option<String>,
+    pub(super) optimal_initial: Option<u32>,
+    pub(super) optimal_iterations: Option<u32>,
+    pub(super) optimal_border: Option<f64>,
 }

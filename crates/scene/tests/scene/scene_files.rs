@@ -368,7 +368,9 @@ fn name_and_shadow_settings_are_passed_on() {
     let scene = load(&format!(
         "name = \"mine\"\n{BOX}[shadow]\ntechnique = \"lispsm\"\nparameter = \"n_opt\"\n\
          resolution = 2048\nsplits = 4\nsplit_scheme = \"practical\"\nbias = \"slope\"\n\
-         filter = \"pcf\"\n"
+         filter = \"pcf\"\nlambda = 0.25\nn = 3\nfocus = \"view\"\n\
+         optimal_readback = \"35x35\"\noptimal_initial = 512\noptimal_iterations = 2\n\
+         optimal_border = 0.1\n"
     ));
     assert_eq!(scene.name, "mine");
     assert_eq!(
@@ -376,12 +378,29 @@ fn name_and_shadow_settings_are_passed_on() {
         ShadowSettings {
             technique: Some("lispsm".into()),
             parameter: Some("n_opt".into()),
+            lambda: Some(0.25),
+            n: Some(3.0),
+            focus: Some("view".into()),
             resolution: Some(2048),
             splits: Some(4),
             split_scheme: Some("practical".into()),
             bias: Some("slope".into()),
             filter: Some("pcf".into()),
+            optimal_readback: Some("35x35".into()),
+            optimal_initial: Some(512),
+            optimal_iterations: Some(2),
+            optimal_border: Some(0.1),
         }
+    );
+    let not_finite = parse_scene(
+        &format!("{BOX}[shadow]\nlambda = nan\n"),
+        std::path::Path::new("nan.toml"),
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        not_finite.contains("nan.toml") && not_finite.contains("shadow.lambda"),
+        "{not_finite}"
     );
     let partial = load(&format!("{BOX}[shadow]\nsplits = 3\n"));
     assert_eq!(

@@ -12,7 +12,9 @@ use shadowlab_params::{
     DepthRange, FrustumModel, HalfFov, LightAngle, ParameterRule, WarpParameter, cad, gmnpr,
     lispsm, logarithmic,
 };
-use shadowlab_shadow::{FocusPolicy, ShadowError, Technique, WarpChoice, measure, plan, psm};
+use shadowlab_shadow::{
+    FocusPolicy, ShadowError, ShadowMapping, Technique, WarpChoice, measure, plan, psm,
+};
 
 use crate::support::{config, configuration, relative};
 
@@ -42,7 +44,7 @@ proptest! {
         gamma_degrees in MIN_GAMMA_DEGREES..90.0f64, above in any::<bool>(), facing in any::<bool>(),
     ) {
         let far = near * 10f64.powf(decades);
-        let input = configuration(DVec3::new(x, y, z), yaw, pitch, fov, near, far, gamma_degrees.to_radians(), above, facing, FocusPolicy::ViewFrustum);
+        let input = configuration(DVec3::new(x, y, z), yaw, pitch, fov, near, far, gamma_degrees.to_radians(), above, facing, FocusPolicy::View);
         let model = FrustumModel::new(DepthRange::new(near, far).unwrap(), HalfFov::from_full_fov_degrees(fov).unwrap());
         let gamma = LightAngle::from_degrees(gamma_degrees).unwrap();
         let rules = ParameterRule::ALL.into_iter().map(|r| Technique::Lispsm(WarpChoice::Rule(r))).chain([Technique::Uniform]);
@@ -83,7 +85,7 @@ proptest! {
         near in 0.01..10.0f64, decades in 0.5..5.0f64, above in any::<bool>(),
     ) {
         let far = near * 10f64.powf(decades);
-        let input = configuration(DVec3::ZERO, yaw, pitch, fov, near, far, PI / 2.0, above, true, FocusPolicy::ViewFrustum);
+        let input = configuration(DVec3::ZERO, yaw, pitch, fov, near, far, PI / 2.0, above, true, FocusPolicy::View);
         let setup = plan(&input, Technique::Lispsm(WarpChoice::PAPER)).unwrap();
         let range = DepthRange::new(near, far).unwrap();
         let n = setup.warp.unwrap().near_distance;
@@ -95,26 +97,38 @@ proptest! {
         }
     }
 
-    /// Claim: the logarithmic map's measured aliasing is the same at every depth: ln(zf/zn) at 90°
-    /// (formulas.md §2.9), `ln(1 + 1/λ)` at other angles where it is defined (γ > φ for B = V).
+    /// Claim: the logarithmic map's measured aliasing along the view axis is its closed form
+    /// `ln(1 + 1/λ)·(1 + c/(t sin γ))`, c its reference point's offset from the eye, at every angle
+    /// (γ from 0.6° to 90°, B = V); where the reference point is the eye (c = 0: the eye at least
+    /// a tenth of z_n·d/(z_f − z_n) beyond B's near plane, γ > φ) that is the same at every depth: `ln(1 + 1/λ)`, and
+    /// ln(zf/zn) at 90° (formulas.md §2.9).
     #[test]
-    fn the_logarithmic_map_has_constant_aliasing(
+    fn the_logarithmic_map_has_its_closed_form_aliasing(
         yaw in -PI..PI, pitch in -1.2..1.2f64, fov in 20.0..100.0f64,
         near in 0.01..10.0f64, decades in 0.5..5.0f64, above in any::<bool>(), facing in any::<bool>(),
-        margin in 0.5..30.0f64,
+        gamma_degrees in MIN_GAMMA_DEGREES..90.0f64, at_ninety in any::<bool>(),
     ) {
         let far = near * 10f64.powf(decades);
-        let gamma_degrees = (fov / 2.0 + margin).min(90.0);
-        let input = configuration(DVec3::ZERO, yaw, pitch, fov, near, far, gamma_degrees.to_radians(), above, facing, FocusPolicy::ViewFrustum);
-        let setup = plan(&input, Technique::Logarithmic).unwrap();
-        let expected = (1.0 / setup.warp.unwrap().lambda).ln_1p();
+        let gamma_degrees = if at_ninety { 90.0 } else { gamma_degrees };
+        let input = configuration(DVec3::ZERO, yaw, pitch, fov, near, far, gamma_degrees.to_radians(), above, facing, FocusPolicy::View);
+        let setup = plan(&input, Technique::LOGARITHMIC).unwrap();
+        let ShadowMapping::Logarithmic(map) = setup.mapping else { unreachable!("a logarithmic map") };
+        let warp = setup.warp.as_ref().unwrap();
+        let z_max = warp.inputs.iter().find(|(name, _)| *name == "z_max").unwrap().1;
+        let at_eye = warp.lambda == -z_max / warp.depth;
+        let constant = (1.0 / warp.lambda).ln_1p();
         if gamma_degrees == 90.0 {
+            prop_assert!(at_eye);
             let range = DepthRange::new(near, far).unwrap();
-            prop_assert!(relative(expected, logarithmic::dp_ds(range)) < AGREEMENT);
+            prop_assert!(relative(constant, logarithmic::dp_ds(range)) < AGREEMENT);
         }
         for t in depths(near, far) {
             let measured = measure::view_axis_error(&setup.mapping, &input.eye, t).unwrap();
-            prop_assert!(relative(measured, expected) < AGREEMENT, "t = {t}: {measured} vs {expected}");
+            let closed = map.view_axis_error(setup.gamma.sin(), t);
+            prop_assert!(relative(measured, closed) < AGREEMENT, "γ = {gamma_degrees}°, t = {t}: {measured} vs {closed}");
+            if at_eye {
+                prop_assert!(relative(measured, constant) < AGREEMENT, "t = {t}: {measured} vs {constant}");
+            }
         }
     }
 
@@ -128,7 +142,7 @@ proptest! {
         shift_fraction in 0.0..50.0f64,
     ) {
         let far = near * 10f64.powf(decades);
-        let input = configuration(DVec3::ZERO, yaw, pitch, fov, near, far, PI / 2.0, above, true, FocusPolicy::ViewFrustum);
+        let input = configuration(DVec3::ZERO, yaw, pitch, fov, near, far, PI / 2.0, above, true, FocusPolicy::View);
         let shift = shift_fraction * near;
         let setup = psm::plan_with_shift(&input, Some(shift)).unwrap();
         let report = setup.psm.unwrap();

@@ -12,9 +12,9 @@ use std::path::PathBuf;
 
 use shadowlab_raster::DepthFormat;
 use shadowlab_scene::{BUILTIN_SCENES, builtin_scene};
-use shadowlab_shadow::optimal::OptimalOptions;
 use shadowlab_shadow::{
-    Bias, Filter, FrameOptions, Lookup, ShadowError, Splits, StepDirection, Technique, render_frame,
+    Bias, Filter, FrameOptions, Lookup, PlanOptions, ShadowError, StepDirection, Technique,
+    render_frame,
 };
 
 /// Eye image and shadow-map sizes of the golden frames.
@@ -38,7 +38,7 @@ fn techniques() -> [Technique; 6] {
         Technique::UniformLimited,
         Technique::Psm,
         Technique::Lispsm(shadowlab_shadow::WarpChoice::PAPER),
-        Technique::Logarithmic,
+        Technique::LOGARITHMIC,
         Technique::Optimal(StepDirection::Paper),
     ]
 }
@@ -51,14 +51,11 @@ fn frames() -> String {
         (scene.camera.width, scene.camera.height) = EYE;
         for technique in techniques() {
             let options = FrameOptions {
-                technique,
+                plan: PlanOptions::new(technique),
                 resolution: MAP,
                 format: DepthFormat::F32,
-                partitions: 1,
-                splits: Splits::Uniform,
                 lookup: Lookup::new(Bias::DEFAULT, Filter::Pcf { size: 3 }),
                 snap_texels: 0,
-                optimal: OptimalOptions::default(),
             };
             let line = match render_frame(&scene, &options) {
                 Ok(frame) => {

@@ -62,7 +62,7 @@ fn input(sun: DVec3) -> PlanInput {
         light: LightSource::directional(sun).unwrap(),
         scene: Aabb::new(DVec3::new(-20.0, -1.0, -20.0), DVec3::new(20.0, 6.0, 20.0)).unwrap(),
         nearest_visible_depth: None,
-        focus: FocusPolicy::Scene,
+        focus: FocusPolicy::Light,
     }
 }
 

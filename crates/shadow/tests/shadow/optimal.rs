@@ -12,8 +12,8 @@ use shadowlab_shadow::optimal::{
     Sample,
 };
 use shadowlab_shadow::{
-    Bias, Filter, FocusPolicy, FrameOptions, Lookup, PlanInput, ShadowError, ShadowMapping, Splits,
-    StepDirection, Technique, plan, plan_light, render_frame,
+    Bias, Filter, FocusPolicy, FrameOptions, Lookup, PlanInput, PlanOptions, ShadowError,
+    ShadowMapping, Splits, StepDirection, Technique, plan, plan_light, render_frame,
 };
 
 use crate::support::{config, configuration, relative};
@@ -345,7 +345,7 @@ fn the_refitted_step_is_no_worse_than_the_papers_on_the_built_in_scenes() {
 
 /// The plan input of a scene's first light, focused on B.
 fn scene_input(scene: &Scene) -> PlanInput {
-    shadowlab_shadow::scene_input(scene, &scene.lights[0], None, FocusPolicy::Scene).unwrap()
+    shadowlab_shadow::scene_input(scene, &scene.lights[0], None, FocusPolicy::Light).unwrap()
 }
 
 /// The reduced rows of a planned map's P, scaled so that `|p̃_4| = 1`.
@@ -442,14 +442,15 @@ fn optimized_frames_render_and_look_up() {
         let mut scene = builtin_scene(name).unwrap();
         (scene.camera.width, scene.camera.height) = (160, 120);
         let options = FrameOptions {
-            technique: Technique::Optimal(StepDirection::Paper),
+            plan: PlanOptions {
+                partitions,
+                splits: Splits::Logarithmic,
+                ..PlanOptions::new(Technique::Optimal(StepDirection::Paper))
+            },
             resolution: 256,
             format: DepthFormat::F32,
-            partitions,
-            splits: Splits::Logarithmic,
             lookup: Lookup::new(Bias::DEFAULT, Filter::Pcf { size: 3 }),
             snap_texels: 0,
-            optimal: OptimalOptions::default(),
         };
         let frame = render_frame(&scene, &options).unwrap();
         let maps = &frame.lights[0].maps;
@@ -530,11 +531,8 @@ fn optimal_is_a_technique_planned_from_the_scene() {
     let parts = plan_light(
         &scene,
         &scene.lights[0],
-        Technique::Optimal(StepDirection::Paper),
-        Splits::Uniform,
-        1,
+        &PlanOptions::new(Technique::Optimal(StepDirection::Paper)),
         None,
-        &OptimalOptions::default(),
     )
     .unwrap();
     assert_eq!(parts.len(), 1);
@@ -570,7 +568,7 @@ fn bad_options_are_refused_and_no_samples_keep_the_initial_map() {
         1.0,
         true,
         true,
-        FocusPolicy::Scene,
+        FocusPolicy::Light,
     )
     .eye;
     assert!(matches!(
@@ -624,11 +622,11 @@ fn plan_light_plans_with_the_given_optimizer_settings() {
     let planned = plan_light(
         &scene,
         light,
-        Technique::Optimal(StepDirection::Paper),
-        Splits::Uniform,
-        1,
+        &PlanOptions {
+            optimal: settings,
+            ..PlanOptions::new(Technique::Optimal(StepDirection::Paper))
+        },
         None,
-        &settings,
     )
     .unwrap();
     let input = scene_input(&scene);

@@ -11,7 +11,7 @@ const NDC_EPS: f64 = 1e-9;
 
 fn outdoor_input() -> PlanInput {
     let scene = builtin_scene("outdoor").unwrap();
-    scene_input(&scene, &scene.lights[0], None, FocusPolicy::Scene).unwrap()
+    scene_input(&scene, &scene.lights[0], None, FocusPolicy::Light).unwrap()
 }
 
 /// Claim: after snapping to a `texels`-texel grid the origin's window position is a multiple of
@@ -54,6 +54,6 @@ fn zero_texels_and_the_logarithmic_map_are_left_alone() {
     let input = outdoor_input();
     let uniform = plan(&input, Technique::Uniform).unwrap();
     assert_eq!(snap_to_texels(&uniform, 1024, 0), uniform);
-    let logarithmic = plan(&input, Technique::Logarithmic).unwrap();
+    let logarithmic = plan(&input, Technique::LOGARITHMIC).unwrap();
     assert_eq!(snap_to_texels(&logarithmic, 1024, 1), logarithmic);
 }
