@@ -118,6 +118,7 @@ pub(crate) fn run(args: &InspectArgs) -> Result<(), CliError> {
                 "splits": std::iter::once(parts[0].near).chain(parts.iter().map(|p| p.far)).collect::<Vec<_>>(),
                 "partitions": parts.iter().enumerate().map(|(p, part)| {
                     let mut value = setup_json(&part.setup);
+                    value["face"] = part.face.as_ref().map_or(Value::Null, |f| json!(f.name()));
                     if let Some(report) = report_of(l, p) {
                         value["optimizer"] = report_json(report);
                     }
@@ -146,8 +147,11 @@ pub(crate) fn run(args: &InspectArgs) -> Result<(), CliError> {
         print_line(&format!("light {l}: split distances {}", splits.join(", ")))?;
         for (p, part) in parts.iter().enumerate() {
             let s = &part.setup;
+            let face = part.face.as_ref().map_or(String::new(), |f| {
+                format!(", serving V's {} face", f.name())
+            });
             print_line(&format!(
-                "  part {p}: γ = {}°, φ = {}°",
+                "  part {p}: γ = {}°, φ = {}°{face}",
                 s.gamma.to_degrees(),
                 s.half_fov.to_degrees()
             ))?;

@@ -8,7 +8,7 @@ use shadowlab_scene::Scene;
 use shadowlab_shadow::optimal::OptimalOptions;
 use shadowlab_shadow::{
     Bias, Filter, FocusPolicy, FrameOptions, Lookup, PlanOptions, ShadowError, Shadows, Splits,
-    Technique, eye_pass, render_shadows, scene_eye,
+    Technique, eye_pass, render_shadows, scene_eye, serving,
 };
 use shadowlab_trace::Bvh;
 
@@ -221,20 +221,15 @@ pub fn frame_footprints(
     };
     let view = scene_eye(scene);
     let (e, v) = (view.pose.eye(), view.pose.forward());
-    let last = shadow.maps.len() - 1;
     let maps: Vec<_> = shadow
         .maps
         .iter()
         .map(|(_, map)| (&map.setup, map.resolution))
         .collect();
     footprints_served(&maps, eye, &scene.camera, |pixel| {
-        let depth = (eye.position[pixel] - e).dot(v);
-        // As the lookup: a partition serves depths from its near to the next one's (the last
-        // partition that does, should they overlap).
-        (0..=last).rev().find(|&index| {
-            let below_next = index == last || depth < shadow.maps[index + 1].0.near;
-            (index == 0 || depth >= shadow.maps[index].0.near) && below_next
-        })
+        let point = eye.position[pixel];
+        // The partition the lookup reads.
+        Some(serving(&shadow.maps, |(p, _)| p, point, (point - e).dot(v)))
     })
 }
 

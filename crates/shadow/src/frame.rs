@@ -2,7 +2,7 @@
 //! spot's own perspective transform, where "point lights can be treated as directional lights from
 //! this point on" (LiSPSM §3.4).
 
-use glam::{DMat3, DMat4, DVec3, DVec4};
+use glam::{DMat3, DMat4, DVec2, DVec3, DVec4};
 use shadowlab_hull::{LightSpace, NdcDepth, ViewPose};
 
 use crate::error::ShadowError;
@@ -66,6 +66,20 @@ impl LightFrame {
             origin: pose.eye(),
             gamma: space.gamma(),
         })
+    }
+
+    /// The same frame turned about its y axis (the light) so that its warp axis — the direction
+    /// the viewer looks along, −z — becomes `axis`, a unit vector given in this frame's (x, z);
+    /// γ is kept (a face partition's warp, [`crate::faces`]).
+    pub(crate) fn turned(&self, axis: DVec2) -> Self {
+        // New z = −axis; new x = y × z, both written in the old frame's coordinates.
+        let z = DVec3::new(-axis.x, 0.0, -axis.y);
+        let x = DVec3::new(z.z, 0.0, -z.x);
+        let turn = DMat3::from_cols(x, DVec3::Y, z).transpose();
+        Self {
+            rotation: turn * self.rotation,
+            ..*self
+        }
     }
 
     /// γ ∈ `[0, π/2]`.

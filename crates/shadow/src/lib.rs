@@ -10,6 +10,7 @@
 //! | PSM | Stamminger & Drettakis 2002 | [`psm`] |
 //! | LiSPSM, any parameter rule or engine variant | Wimmer et al. 2004 §3; CAD; GMNPR; production-variants.md | `plan`, `warp`, `frame` |
 //! | logarithmic | LiSPSM §4, Lloyd et al. 2008 | [`logarithmic`] |
+//! | logarithmic, face-partitioned | Lloyd et al. EGSR 2006 §5.2, TOG 2008 | [`faces`] |
 //! | scene-optimized (`optimal`) | CG06 Algorithm 1 (Chong & Gortler 2006) | [`optimal`] |
 //!
 //! Every light-space technique (uniform, LiSPSM, logarithmic) works in LiSPSM's light space
@@ -24,6 +25,7 @@
 //! Matrices act on column vectors and produce GL clip space (NDC depth in `[−1, 1]`).
 
 mod error;
+pub mod faces;
 mod frame;
 mod input;
 pub mod logarithmic;
@@ -42,10 +44,11 @@ pub mod view;
 mod warp;
 
 pub use error::ShadowError;
+pub use faces::FaceRegion;
 pub use input::{Eye, FocusPolicy, LightSource, PlanInput};
 pub use lookup::{Bias, DEFAULT_DISK_SEED, DEFAULT_MIN_VARIANCE, Filter, Lookup};
 pub use map::{MapOptions, ShadowMap};
-pub use plan::{Partition, Splits, plan, plan_partitions};
+pub use plan::{Partition, Splits, plan, plan_partitions, serving};
 pub use render::{
     Frame, FrameOptions, LightShadow, PlanOptions, Shadows, Timings, eye_pass, plan_light,
     render_frame, render_shadows, scene_eye, scene_input,

@@ -29,8 +29,9 @@ use glam::{DMat4, DVec2, DVec3};
 use shadowlab_params::{FrustumModel, LightAngle, gmnpr};
 
 use crate::error::ShadowError;
+use crate::frame::LightFrame;
 use crate::input::PlanInput;
-use crate::plan::{focus_in_light_space, view_model};
+use crate::plan::{focus_points, view_model};
 use crate::setup::{LightSetup, ShadowMapping, WarpReport};
 use crate::technique::{LogarithmicChoice, Technique};
 use crate::warp::Extents;
@@ -188,35 +189,49 @@ impl LogarithmicMap {
 /// and depth `depth` along the warp axis (the eye at the light-space origin):
 ///
 /// `λ = max(λ_eye, λ_fall(γ), λ_floor)`, `λ_eye = −z_max/d`,
-/// `λ_fall(γ) = λ2*(γ) − λ2*(φ)` for `γ < φ`, 0 above,
+/// `λ_fall(γ) = max(0, λ_mm(γ) − λ_mm(φ))` for `γ < φ`, 0 above,
 /// `λ_floor = 0.1·z_n/(z_f − z_n)` ([`REFERENCE_FLOOR_FRACTION`], z_n and z_f the view's),
 ///
-/// with `λ2*` GMNPR eq. 7's fall-back `λ1(φ)/tan(πγ/(4φ))` in the 2-D model of the view
-/// (`shadowlab_params::gmnpr::lambda2_star`). Wherever the eye lies beyond B's near plane by more
-/// than `λ_floor·d` and `γ ≥ φ` — every built-in scene but the dueling frusta, and B = V at 90°
-/// for any depth range — this is the eye's λ, the logarithmic map of LiSPSM §4 and Lloyd et al.;
-/// below φ it is the eye's λ where that exceeds `λ_fall`; elsewhere the reference point stays
-/// outside B.
-/// `λ_fall` is zero at φ, so λ is continuous across it, and it grows like λ2* to infinity as
-/// γ → 0, so the map tends to the uniform one. shadowlab's own rule: neither paper defines the map
-/// where the eye is inside B's extent.
+/// with `λ_mm` the L∞-optimal λ of a perspective warp in the 2-D model of the view (formulas.md
+/// §5.8, `shadowlab_params::gmnpr::lambda_minimax`): where the eye lies inside B's extent the
+/// reference point is placed where the best perspective warp would put its projection centre
+/// (the lateral mapping of both is the same perspective from that point), less that λ's value at
+/// φ, so that λ is continuous where the eye crosses B's near plane (γ = φ for B = V); it grows to
+/// infinity as γ → 0, so the map tends to the uniform one. Wherever the eye lies beyond B's near
+/// plane by more than `λ_floor·d` and `γ ≥ φ` — every built-in scene but the dueling frusta, and
+/// B = V at 90° for any depth range — this is the eye's λ, the logarithmic map of LiSPSM §4 and
+/// Lloyd et al. shadowlab's own rule: neither paper defines the map where the eye lies inside B's
+/// extent (measured against stated λ in docs/benchmarks.md).
 #[must_use]
 pub fn reference_lambda(z_max: f64, depth: f64, model: &FrustumModel, gamma: LightAngle) -> f64 {
     let eye = -z_max / depth;
     let phi = model.half_fov().radians();
-    let fall = match gmnpr::lambda2_star(model, gamma) {
-        Some(at_gamma) if gamma.radians() < phi => {
-            let at_phi = LightAngle::from_radians(phi)
-                .ok()
-                .and_then(|phi| gmnpr::lambda2_star(model, phi))
-                .map_or(0.0, |w| w.lambda());
-            at_gamma.lambda() - at_phi
+    let fall = match LightAngle::from_radians(phi) {
+        Ok(at_phi) if gamma.radians() < phi => {
+            let minimax = |angle| gmnpr::lambda_minimax(model, angle).lambda();
+            (minimax(gamma) - minimax(at_phi)).max(0.0)
         }
         _ => 0.0,
     };
     let range = model.range();
     let floor = REFERENCE_FLOOR_FRACTION * range.near() / range.length();
     eye.max(fall).max(floor).max(MIN_LAMBDA)
+}
+
+/// How a logarithmic map's reference point is placed.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Reference {
+    /// shadowlab's rule, [`reference_lambda`].
+    Rule,
+    /// The eye, where it lies beyond B's near plane (a face partition's side face always has it
+    /// there), at least [`MIN_LAMBDA`].
+    Eye,
+    /// Infinitely far: the uniform map (a face partition's end face).
+    Uniform,
+    /// λ as stated.
+    Lambda(f64),
+    /// n' as stated.
+    NearDistance(f64),
 }
 
 /// Plans the logarithmic map for `input`, its reference point chosen by `choice`.
@@ -229,21 +244,66 @@ pub(crate) fn plan(
     choice: LogarithmicChoice,
 ) -> Result<LightSetup, ShadowError> {
     let technique = Technique::Logarithmic(choice);
-    let (frame, world_points, points) = focus_in_light_space(input, technique)?;
+    let reference = match choice {
+        LogarithmicChoice::Eye => Reference::Rule,
+        LogarithmicChoice::Lambda(warp) => Reference::Lambda(warp.lambda()),
+        LogarithmicChoice::NearDistance(n) => Reference::NearDistance(n.get()),
+        LogarithmicChoice::Faces => {
+            return Err(ShadowError::NotDefined {
+                technique: technique.key(),
+                reason: "face partitioning makes one map per face of the view frustum: plan it \
+                         with plan_partitions or plan_light"
+                    .into(),
+            });
+        }
+    };
+    let frame = LightFrame::new(&input.eye, &input.light, technique.key())?;
     let (model, half_fov) = view_model(input)?;
     let gamma = LightAngle::from_radians(frame.gamma())?;
+    plan_in(
+        technique,
+        &frame,
+        focus_points(input)?,
+        reference,
+        &model,
+        gamma,
+        half_fov,
+    )
+}
+
+/// The logarithmic map of the body with vertices `world_points` in light space `frame`, its
+/// reference point placed by `reference`.
+///
+/// # Errors
+/// [`ShadowError::NotDefined`] for a stated λ below [`MIN_LAMBDA`];
+/// [`ShadowError::FlatFocusBody`] for a body flat along an axis of the map;
+/// [`ShadowError::LightInsideFocusBody`] for a point behind a spot light.
+pub(crate) fn plan_in(
+    technique: Technique,
+    frame: &LightFrame,
+    world_points: Vec<DVec3>,
+    reference: Reference,
+    model: &FrustumModel,
+    gamma: LightAngle,
+    half_fov: f64,
+) -> Result<LightSetup, ShadowError> {
+    let points = frame
+        .light_points(&world_points)
+        .ok_or(ShadowError::LightInsideFocusBody)?;
     let extents = Extents::of(&points);
     let depth = extents.max.z - extents.min.z;
     if depth <= 0.0 {
         return Err(ShadowError::FlatFocusBody { axis: "warp axis" });
     }
     let common = [("gamma_degrees", gamma.degrees()), ("d", depth)];
-    let (lambda, formula, inputs) = match choice {
-        LogarithmicChoice::Eye => (
-            reference_lambda(extents.max.z, depth, &model, gamma),
-            "λ = max(−z_max/d, λ2*(γ) − λ2*(φ) below φ, 0.1·z_n/(z_f − z_n)): the reference point at the eye \
-             where it lies beyond B's near plane, else held outside B, growing to the uniform map \
-             as γ → 0 (λ2* of GMNPR eq. 7) — shadowlab's own rule",
+    let eye = -extents.max.z / depth;
+    let (lambda, formula, inputs) = match reference {
+        Reference::Rule => (
+            reference_lambda(extents.max.z, depth, model, gamma),
+            "λ = max(−z_max/d, λ_mm(γ) − λ_mm(φ) below φ, 0.1·z_n/(z_f − z_n)): the reference \
+             point at the eye where it lies beyond B's near plane, else held outside B where the \
+             model's minimax perspective warp (formulas.md §5.8) would put its centre, growing \
+             to the uniform map as γ → 0 — shadowlab's own rule",
             vec![
                 ("z_max", extents.max.z),
                 ("z_n", model.range().near()),
@@ -253,16 +313,19 @@ pub(crate) fn plan(
                 common[1],
             ],
         ),
-        LogarithmicChoice::Lambda(warp) => (warp.lambda(), "λ as stated", common.to_vec()),
-        LogarithmicChoice::NearDistance(n) => (n.get() / depth, "n as stated", common.to_vec()),
-        LogarithmicChoice::Faces => {
-            return Err(ShadowError::NotDefined {
-                technique: technique.key(),
-                reason: "face partitioning makes one map per face of the view frustum: plan it \
-                         with plan_partitions or plan_light"
-                    .into(),
-            });
-        }
+        Reference::Eye => (
+            eye.max(MIN_LAMBDA),
+            "λ = −z_max/d: the reference point at the eye (Lloyd et al.'s face partitioning, a \
+             side face)",
+            vec![("z_max", extents.max.z), common[0], common[1]],
+        ),
+        Reference::Uniform => (
+            f64::INFINITY,
+            "λ = ∞: a uniform map (Lloyd et al.'s face partitioning, an end face)",
+            common.to_vec(),
+        ),
+        Reference::Lambda(lambda) => (lambda, "λ as stated", common.to_vec()),
+        Reference::NearDistance(n) => (n / depth, "n as stated", common.to_vec()),
     };
     if lambda < MIN_LAMBDA {
         return Err(ShadowError::NotDefined {

@@ -1136,6 +1136,7 @@ pub fn plan_partitions(
                 Partition {
                     near,
                     far,
+                    face: None,
                     setup: optimized.setup,
                 },
                 optimized.report,

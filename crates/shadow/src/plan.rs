@@ -9,11 +9,12 @@ use shadowlab_params::splits::SplitScheme;
 use shadowlab_params::{DepthRange, FrustumModel, HalfFov, LightAngle, ParameterRule};
 
 use crate::error::ShadowError;
+use crate::faces::{self, FaceRegion};
 use crate::frame::LightFrame;
 use crate::input::{FocusPolicy, PlanInput};
 use crate::parameter::{self, WarpGeometry};
 use crate::setup::{LightSetup, ShadowMapping, WarpReport};
-use crate::technique::{Technique, WarpChoice};
+use crate::technique::{LogarithmicChoice, Technique, WarpChoice};
 use crate::warp::{self, Extents};
 use crate::{logarithmic, psm};
 
@@ -21,8 +22,8 @@ use crate::{logarithmic, psm};
 ///
 /// # Errors
 /// [`ShadowError`] naming why: an empty or flat focus body, a technique not defined for the
-/// configuration (GLPR for γ ≤ φ, the logarithmic map when the eye lies within B's warp-axis
-/// extent, …), or invalid geometry. [`Technique::Optimal`] is always [`ShadowError::NotDefined`]
+/// configuration (GLPR for γ ≤ φ, the logarithmic map's face partitioning, which makes several
+/// maps: [`plan_partitions`]), or invalid geometry. [`Technique::Optimal`] is always [`ShadowError::NotDefined`]
 /// here: it needs the scene's geometry ([`crate::plan_light`], [`crate::optimal::plan`]).
 pub fn plan(input: &PlanInput, technique: Technique) -> Result<LightSetup, ShadowError> {
     match technique {
@@ -249,20 +250,60 @@ pub enum Splits {
     },
 }
 
-/// One part of a z-partitioned shadow: the eye depths it serves and its map's set-up.
+/// One part of a partitioned shadow: the eye depths it serves (z-partitioning), the part of the
+/// light's view it serves (face partitioning), and its map's set-up.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Partition {
     /// The eye depth where it starts.
     pub near: f64,
     /// The eye depth where it ends.
     pub far: f64,
-    /// Its light set-up, planned for the sub-frustum `[near, far]`.
+    /// For a face partition ([`crate::faces`]), the face of its z-partition's view whose projection
+    /// it serves; `None`: all of the view at these depths.
+    pub face: Option<FaceRegion>,
+    /// Its light set-up, planned for the sub-frustum `[near, far]` (and the face).
     pub setup: LightSetup,
+}
+
+/// Which of `partitions` (nearest first, as planned; each reached through `partition`) serves the
+/// visible point `world` at eye depth `depth`: the z-partition is the last whose near is at most
+/// the depth (the first if none is); among its face partitions, the face whose projection holds the
+/// point most deeply (the first of equals).
+#[must_use]
+pub fn serving<T>(
+    partitions: &[T],
+    partition: impl Fn(&T) -> &Partition,
+    world: DVec3,
+    depth: f64,
+) -> usize {
+    let last = partitions
+        .iter()
+        .rposition(|p| partition(p).near <= depth)
+        .unwrap_or(0);
+    let Some(near) = partitions.get(last).map(|p| partition(p).near) else {
+        return 0;
+    };
+    let first = partitions[..last]
+        .iter()
+        .rposition(|p| partition(p).near != near)
+        .map_or(0, |k| k + 1);
+    let mut best = (last, f64::NEG_INFINITY);
+    for (k, p) in partitions.iter().enumerate().take(last + 1).skip(first) {
+        let inside = partition(p)
+            .face
+            .as_ref()
+            .map_or(f64::INFINITY, |face| face.inside(world));
+        if inside > best.1 {
+            best = (k, inside);
+        }
+    }
+    best.0
 }
 
 /// z-partitioning (CAD §3.3): the view's depth range split into `count` parts by `splits`, each
 /// part's sub-frustum focused and warped by `technique` on its own. One part is the unpartitioned
-/// map.
+/// map. The logarithmic map's face partitioning ([`crate::faces`]) splits each part further, one
+/// partition per face of its view that faces away from the light.
 ///
 /// # Errors
 /// As [`plan`] for any part; [`ShadowError::Parameter`] if the split scheme rejects the range or
@@ -273,16 +314,25 @@ pub fn plan_partitions(
     splits: Splits,
     count: usize,
 ) -> Result<Vec<Partition>, ShadowError> {
-    partition_inputs(input, splits, count)?
-        .into_iter()
-        .map(|(near, far, part)| {
-            Ok(Partition {
+    let mut partitions = Vec::new();
+    for (near, far, part) in partition_inputs(input, splits, count)? {
+        if technique == Technique::Logarithmic(LogarithmicChoice::Faces) {
+            partitions.extend(faces::plan(&part)?.into_iter().map(|face| Partition {
                 near,
                 far,
+                face: Some(face.region),
+                setup: face.setup,
+            }));
+        } else {
+            partitions.push(Partition {
+                near,
+                far,
+                face: None,
                 setup: plan(&part, technique)?,
-            })
-        })
-        .collect()
+            });
+        }
+    }
+    Ok(partitions)
 }
 
 /// The sub-frusta of z-partitioning: the view's depth range split into `count` parts by `splits`,

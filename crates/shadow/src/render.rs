@@ -17,7 +17,7 @@ use crate::input::{Eye, FocusPolicy, LightSource, PlanInput};
 use crate::lookup::Lookup;
 use crate::map::{MapOptions, ShadowMap};
 use crate::optimal::{self, OptimalOptions};
-use crate::plan::{Partition, Splits, plan_partitions};
+use crate::plan::{Partition, Splits, plan_partitions, serving};
 use crate::setup::ShadowMapping;
 use crate::snap::snap_to_texels;
 use crate::technique::Technique;
@@ -342,12 +342,7 @@ fn look_up(
                     continue;
                 };
                 let position: DVec3 = image.position[pixel];
-                // The partition serving this depth: the last whose near is at most it.
-                let index = shadow
-                    .maps
-                    .iter()
-                    .rposition(|(p, _)| p.near <= depth)
-                    .unwrap_or(0);
+                let index = serving(&shadow.maps, |(p, _)| p, position, depth);
                 let map = &shadow.maps[index].1;
                 *value = lookup.lit_fraction(map, position, image.normal[pixel]);
             }

@@ -2,6 +2,8 @@
 //! - `closed_forms`: every technique's matrices, fitted to B = V, have the aliasing the closed forms
 //!   of `shadowlab-params` predict (LiSPSM eq. 3, CAD eq. 12 / GMNPR eq. 2, the logarithmic
 //!   constant, PSM shifted by Δ = LiSPSM with n = zn + Δ);
+//! - `faces`: Lloyd et al.'s face partitioning tiles the view, covers what it serves, reduces to
+//!   the plain map for the overhead light;
 //! - `golden`: every built-in scene × technique, hashed; identical on 1, 2 and 8 threads;
 //! - `lookups`: rendered maps looked up: shadows where geometry puts them, biases against acne,
 //!   filters only at edges, seeded disks;
@@ -13,6 +15,7 @@
 //! - `support`: seeded configurations.
 
 mod closed_forms;
+mod faces;
 mod golden;
 mod limits;
 mod lookups;
