@@ -217,7 +217,7 @@ fn bad_input_exits_with_2_and_names_the_problem() {
                 "--param".into(),
                 "gmnpr".into(),
             ],
-            "applies to lispsm and optimal only",
+            "applies to lispsm, logarithmic and optimal only",
         ),
         (
             vec![
@@ -260,7 +260,9 @@ fn bad_input_exits_with_2_and_names_the_problem() {
                 "inspect".into(),
                 "dueling-frusta".into(),
                 "--technique".into(),
-                "logarithmic".into(),
+                "lispsm".into(),
+                "--param".into(),
+                "glpr".into(),
             ],
             "not defined",
         ),

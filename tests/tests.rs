@@ -7,6 +7,8 @@
 //!   continuity at γ = 0, bad input.
 //! * `render_cli` — `shadowlab render` and `inspect`: the pictures, repeatable, partitions, JSON,
 //!   bad scenes and settings.
+//! * `warp_cli` — what a user states: `--lambda`, `--n`, `--focus`, the `[shadow]` table and its
+//!   optimizer settings, rules' inputs in `inspect`, defaults in help texts, refusals named.
 
 mod analyze_cli;
 mod curves_cli;
@@ -14,3 +16,4 @@ mod params_cli;
 mod render_cli;
 mod render_mesh_cli;
 mod support;
+mod warp_cli;
