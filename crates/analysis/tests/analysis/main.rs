@@ -6,6 +6,7 @@
 //! - `aliasing`: the footprint against closed forms (a tilted plane, an independent construction
 //!   per pixel, `measure`'s view-axis error at 90° and at any γ), statistics, thread counts;
 //! - `images`: the heat map's colours and scale;
+//! - `sweep`: the logarithmic map's misclassified pixels continuous across γ = φ and at γ = 0;
 //! - `temporal`: the camera walk, and a frame where the optimizer keeps the initial map;
 //! - `view_axis`: measured on the matrices against the closed form at 90°;
 //! - `support`: scenes, hand-built eye images, the seeded configuration.
@@ -14,6 +15,7 @@ mod aliasing;
 mod classify;
 mod images;
 mod support;
+mod sweep;
 mod temporal;
 mod truth;
 mod view_axis;
