@@ -64,7 +64,7 @@ pub(crate) struct AnalyzeArgs {
     #[arg(long, value_delimiter = ',', default_value = "750,1000,1250,1500,1750,2000", value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_TARGET_SIZE)))]
     pub(crate) resolutions: Vec<u32>,
     /// Partition counts, comma-separated.
-    #[arg(long, value_delimiter = ',', default_value = "1", value_parser = clap::value_parser!(u32).range(1..=16))]
+    #[arg(long, value_delimiter = ',', default_value = "1", value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_PARTITIONS)))]
     pub(crate) splits: Vec<u32>,
     /// How partitions split the depth range: uniform, logarithmic, practical or practical:WEIGHT,
     /// adaptive or adaptive:DELTA.
@@ -93,6 +93,12 @@ pub(crate) struct AnalyzeArgs {
     #[arg(long)]
     pub(crate) out: Option<PathBuf>,
 }
+
+/// The default shadow-map side of `render` and `inspect`.
+pub(crate) const DEFAULT_RESOLUTION: u32 = 1024;
+
+/// The most z-partitions.
+pub(crate) const MAX_PARTITIONS: u32 = 16;
 
 /// What `--focus` chooses.
 const FOCUS_HELP: &str = "The focus body B each map is fitted to: light (B = conv(V ∪ l) ∩ S ∩ L, \
@@ -251,11 +257,12 @@ pub(crate) struct ShadowArgs {
     /// view-scene (V ∩ S), view (V alone, the papers' 2-D model).
     #[arg(long, value_parser = FocusPolicy::parse)]
     pub(crate) focus: Option<FocusPolicy>,
-    /// Shadow-map side in texels. Default: 1024.
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_TARGET_SIZE)))]
+    /// Shadow-map side in texels.
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_TARGET_SIZE)),
+          help = format!("Shadow-map side in texels. Default: {DEFAULT_RESOLUTION}"))]
     pub(crate) resolution: Option<u32>,
     /// Number of z-partitions (one map each). Default: 1.
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=16))]
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_PARTITIONS)))]
     pub(crate) splits: Option<u32>,
     /// How partitions split the depth range: uniform, logarithmic, practical or practical:WEIGHT,
     /// adaptive or adaptive:DELTA. Default: practical:0.5.

@@ -11,15 +11,10 @@ use shadowlab_shadow::optimal::OptimalOptions;
 use shadowlab_shadow::{Bias, Filter, FocusPolicy, Lookup, PlanOptions, Splits, Technique};
 
 use crate::args::{
-    MAX_OPTIMAL_ITERATIONS, OptimizerArgs, ShadowArgs, StatedWarps, border_fraction, parse_size,
+    DEFAULT_RESOLUTION, MAX_OPTIMAL_ITERATIONS, MAX_PARTITIONS, OptimizerArgs, ShadowArgs,
+    StatedWarps, border_fraction, parse_size,
 };
 use crate::error::CliError;
-
-/// The default shadow-map side.
-pub(crate) const DEFAULT_RESOLUTION: u32 = 1024;
-
-/// The most z-partitions.
-pub(crate) const MAX_PARTITIONS: u32 = 16;
 
 /// Everything `render` and `inspect` need, resolved.
 pub(crate) struct Resolved {
