@@ -3,7 +3,9 @@
 //!
 //! Every intersection is computed from the vertex inside the plane towards the one outside,
 //! whichever way the polygon runs, and the planes are applied in one fixed order. So two triangles
-//! sharing a clipped edge compute bit-identical new vertices, and stay watertight along it.
+//! sharing a clipped edge compute bit-identical new vertices, and stay watertight along it. The new
+//! vertices keep their unsnapped window positions too: they lie on the triangle's plane (to
+//! rounding), so the depth of every piece is the depth of the whole triangle, as if unclipped.
 
 use glam::DVec4;
 
@@ -135,10 +137,14 @@ mod tests {
         let (mut one, mut two) = (Vec::new(), Vec::new());
         clip_triangle([a, b, c], code::NEAR, 0, &viewport, &mut one);
         clip_triangle([b, a, d], code::NEAR, 1, &viewport, &mut two);
+        // Snapped and unsnapped positions: depth is interpolated from the latter.
         let new_vertices = |pieces: &[ClippedTriangle]| {
-            let mut v: Vec<(i32, i32)> = pieces
+            let mut v: Vec<(i32, i32, u64, u64)> = pieces
                 .iter()
-                .flat_map(|t| t.vertices.map(|v| (v.x, v.y)))
+                .flat_map(|t| {
+                    t.vertices
+                        .map(|v| (v.x, v.y, v.unsnapped_x.to_bits(), v.unsnapped_y.to_bits()))
+                })
                 .collect();
             v.sort_unstable();
             v.dedup();

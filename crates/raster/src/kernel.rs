@@ -9,6 +9,12 @@
 //! two ORs and a sign test give the row's coverage as a bit mask, with no division and no branch per
 //! pixel. The covered columns of a row of a convex triangle are contiguous, so the row's fragments
 //! are the span between the mask's lowest and highest bit.
+//!
+//! Depth is not stepped from pixel to pixel: every pixel gets `row_depth(j) + column_depth(i)` of
+//! the triangle's [`DepthPlane`] — the plane through its *unsnapped* vertices (see the `triangle`
+//! module), relative to a reference point on the grid with exact integer offsets — the column parts
+//! once per block, the row part once per row. So a pixel's depth bits do not depend on the block,
+//! the tile or the path (blocks, narrow boxes, early fragments) that draws it.
 
 use std::ops::RangeInclusive;
 
@@ -138,7 +144,7 @@ pub(crate) fn for_each_in_mask(
     }
 }
 
-/// Sends the fragments of a counter-clockwise triangle (with doubled area `area`) that fall in
+/// Sends the fragments of a triangle (with doubled signed area `area`, non-zero) that fall in
 /// `tile` (within the triangle's pixel box) to `sink`, row by row within blocks of 8 × 16, or two
 /// rows at a time for boxes at most four pixels wide. Returns the number that passed. Boxes of one
 /// or two pixels take no special path here: binning draws those that lie in one tile (see
@@ -146,7 +152,7 @@ pub(crate) fn for_each_in_mask(
 /// the two-row path came, cost 4 % of the dragon's light pass for its extra branch.
 #[inline]
 pub(crate) fn rasterize<S: Sink>(
-    oriented: &[WindowVertex; 3],
+    vertices: &[WindowVertex; 3],
     area: i64,
     bounds: &PixelBox,
     tile: &TileRect,
@@ -160,8 +166,8 @@ pub(crate) fn rasterize<S: Sink>(
     if i0 > i1 || j0 > j1 {
         return 0;
     }
-    let edges = edges(oriented);
-    let depth = DepthPlane::new(oriented, area);
+    let edges = edges(vertices, area);
+    let depth = DepthPlane::new(vertices, area);
     if i1 - i0 < HALF_I64 {
         rasterize_narrow(&edges, &depth, i0..=i1, j0..=j1, tile, triangle, sink)
     } else {
@@ -378,7 +384,6 @@ mod tests {
     /// path, for boxes of one to four columns and up to a whole tile's rows, anywhere in a tile.
     #[test]
     fn narrow_boxes_give_what_blocks_give() {
-        use crate::triangle::counter_clockwise;
         let mut random = crate::test_random::XorShift::new(0x2545_f491_4f6c_dd1d);
         let mut next = move |n: i64| {
             #[expect(clippy::cast_possible_wrap, reason = "below n")]
@@ -393,13 +398,20 @@ mod tests {
         };
         let mut compared = 0;
         for _ in 0..20_000 {
-            // A thin triangle in grid units: up to 4 pixels wide, up to 70 tall, anywhere.
+            // A thin triangle in grid units: up to 4 pixels wide, up to 70 tall, anywhere, its
+            // unsnapped positions off the grid by up to half a grid unit.
             let (x, y) = (256 * (60 + next(70)), 256 * (120 + next(80)));
-            #[expect(clippy::cast_possible_truncation, reason = "small grid values")]
-            let v: [WindowVertex; 3] = std::array::from_fn(|_| WindowVertex {
-                x: (x + next(4 * 256)) as i32,
-                y: (y + next(70 * 256)) as i32,
-                z: 0.25 + 0.5 * f64::from(u32::try_from(next(1000)).unwrap_or(0)) / 1000.0,
+            let v: [WindowVertex; 3] = std::array::from_fn(|_| {
+                #[expect(clippy::cast_possible_truncation, reason = "small grid values")]
+                let (x, y) = ((x + next(4 * 256)) as i32, (y + next(70 * 256)) as i32);
+                let mut thousandths = |n| f64::from(u32::try_from(next(n)).unwrap_or(0)) / 1000.0;
+                WindowVertex {
+                    x,
+                    y,
+                    z: 0.25 + 0.5 * thousandths(1000),
+                    unsnapped_x: f64::from(x) + thousandths(1001) - 0.5,
+                    unsnapped_y: f64::from(y) + thousandths(1001) - 0.5,
+                }
             });
             let Verdict::Draw(b, area) = classify(&v, crate::CullMode::None, 4096, 4096) else {
                 continue;
@@ -409,8 +421,7 @@ mod tests {
             if i0 > i1 || j0 > j1 || i1 - i0 >= HALF_I64 {
                 continue;
             }
-            let oriented = counter_clockwise(&v, area);
-            let (edges, depth) = (edges(&oriented), DepthPlane::new(&oriented, area));
+            let (edges, depth) = (edges(&v, area), DepthPlane::new(&v, area));
             let (mut narrow, mut blocks) = (Recorder::default(), Recorder::default());
             rasterize_narrow(&edges, &depth, i0..=i1, j0..=j1, &tile, 0, &mut narrow);
             rasterize_blocks(&edges, &depth, i0..=i1, j0..=j1, &tile, 0, &mut blocks);

@@ -10,8 +10,9 @@
 //! * **Coverage** by integer edge functions at pixel centres `(i + ½, j + ½)` in `i64`, with the fill
 //!   rule documented in the `triangle` module: a centre on an edge shared by two triangles is drawn
 //!   exactly once.
-//! * **Depth** interpolated linearly in screen space (as GL does) in f64, stored as a [`DepthFormat`]
-//!   (f32, reversed-Z f32, 24- or 16-bit unorm), tested with a [`DepthCompare`].
+//! * **Depth** interpolated linearly in screen space in f64 from the *unsnapped* window positions, as
+//!   GL defines it (snapping is for coverage only), stored as a [`DepthFormat`] (f32, reversed-Z
+//!   f32, 24- or 16-bit unorm), tested with a [`DepthCompare`].
 //! * **Targets**: [`DepthTarget`] (shadow maps), [`DepthPairTarget`] (nearest and second-nearest
 //!   depth in one pass), [`EyeTarget`] (depth and triangle id, resolved into perspective-correct
 //!   world positions and normals by [`EyeTarget::resolve`]), and [`Rasterizer::for_each_fragment`]

@@ -24,7 +24,7 @@ use crate::kernel::{BLOCK, HALF, Lanes, Sink, TileKernel, TileRect, for_each_in_
 use crate::target::{
     DepthPairTarget, DepthTarget, EyeTarget, TILE_SHIFT, TILE_STRIDE, TargetSize, TileTarget,
 };
-use crate::triangle::{CullMode, DepthPlane, Edge, Verdict, classify, counter_clockwise, edges};
+use crate::triangle::{CullMode, DepthPlane, Edge, Verdict, classify, edges};
 use crate::vertex::{Viewport, WindowVertex, code, transform, transform_vertices};
 
 /// Vertices per parallel work item of the vertex stage: small enough that the bunny's 34 835
@@ -585,12 +585,11 @@ fn find_early_fragments(
     triangle: u32,
     out: &mut Vec<EarlyFragment>,
 ) {
-    let oriented = counter_clockwise(vertices, area);
-    let covered = early_coverage(&edges(&oriented), b);
+    let covered = early_coverage(&edges(vertices, area), b);
     if covered == 0 {
         return;
     }
-    let depth = DepthPlane::new(&oriented, area);
+    let depth = DepthPlane::new(vertices, area);
     let tile_mask = (1 << TILE_SHIFT) - 1;
     for_each_in_mask(covered, &depth, b.min_i..=b.max_i, b.min_j, |i, j, z| {
         #[expect(
@@ -721,8 +720,7 @@ impl Binned<'_> {
             };
             let vertices = corners.map(|v| source[v as usize]);
             if let Verdict::Draw(bounds, area) = classify(&vertices, self.cull, w, h) {
-                let oriented = counter_clockwise(&vertices, area);
-                passed += rasterize(&oriented, area, &bounds, rect, triangle, sink);
+                passed += rasterize(&vertices, area, &bounds, rect, triangle, sink);
             }
         }
         passed
@@ -782,6 +780,89 @@ mod tests {
     use super::*;
     use crate::triangle::PixelBox;
 
+    /// Records the covered pixels the tile pass sends, with their depths' bits.
+    #[derive(Default)]
+    struct Recorder(Vec<(usize, u64)>);
+
+    impl Sink for Recorder {
+        fn row<const SPLIT: usize>(
+            &mut self,
+            start: usize,
+            uncovered: &Lanes<u32>,
+            z: &Lanes<f64>,
+            _triangle: u32,
+        ) -> u64 {
+            for k in (0..BLOCK).filter(|&k| uncovered[k] == 0) {
+                self.0
+                    .push((start + (k / HALF) * SPLIT + k % HALF, z[k].to_bits()));
+            }
+            0
+        }
+
+        fn fragment(&mut self, index: usize, z: f64, _triangle: u32) -> u64 {
+            self.0.push((index, z.to_bits()));
+            0
+        }
+    }
+
+    /// The early fragments binning finds for a tiny triangle are the pixels, with the same depth
+    /// bits, that the tile pass draws for it, for triangles off the grid (unsnapped positions up to
+    /// half a grid unit from the snapped ones) anywhere in a tile, on and across its borders.
+    #[test]
+    fn early_fragments_are_what_the_tile_pass_draws() {
+        let mut random = crate::test_random::XorShift::new(0x3c6e_f372_fe94_f82b);
+        let mut next = move |n: u64| {
+            #[expect(clippy::cast_possible_wrap, reason = "below n")]
+            let v = random.below(n) as i64;
+            v
+        };
+        let size = TargetSize::new(256, 256).unwrap();
+        let mut compared = 0;
+        for _ in 0..50_000 {
+            // Within three pixels of a point near the tile corner (64, 64).
+            let (x, y) = (256 * 62 + next(256 * 4), 256 * 62 + next(256 * 4));
+            let v: [WindowVertex; 3] = std::array::from_fn(|_| {
+                #[expect(clippy::cast_possible_truncation, reason = "small grid values")]
+                let (x, y) = ((x + next(3 * 256)) as i32, (y + next(3 * 256)) as i32);
+                #[expect(clippy::cast_precision_loss, reason = "below 1001")]
+                let mut off_grid = || next(1001) as f64 / 1000.0 - 0.5;
+                WindowVertex {
+                    x,
+                    y,
+                    z: 0.5 + off_grid(),
+                    unsnapped_x: f64::from(x) + off_grid(),
+                    unsnapped_y: f64::from(y) + off_grid(),
+                }
+            });
+            let Verdict::Draw(bounds, area) = classify(&v, CullMode::None, 256, 256) else {
+                continue;
+            };
+            let Some(tile) = small_box_tile(&bounds, size) else {
+                continue;
+            };
+            let mut early = Vec::new();
+            find_early_fragments(&v, area, &bounds, 0, &mut early);
+            let mut early: Vec<(usize, u64)> = early
+                .iter()
+                .map(|f| (usize::from(f.pixel), f.z.to_bits()))
+                .collect();
+            let (x0, y0, width, height) = size.tile_rect(tile as usize);
+            let rect = TileRect {
+                x0,
+                y0,
+                width,
+                height,
+            };
+            let mut drawn = Recorder::default();
+            rasterize(&v, area, &bounds, &rect, 0, &mut drawn);
+            early.sort_unstable();
+            drawn.0.sort_unstable();
+            assert_eq!(early, drawn.0, "{v:?}");
+            compared += usize::from(!early.is_empty());
+        }
+        assert!(compared > 2_000, "{compared}");
+    }
+
     /// The scalar test of one- and two-pixel boxes agrees with the edge functions evaluated at
     /// each centre, for edges of every slope and boxes on and off the triangles.
     #[test]
@@ -795,11 +876,19 @@ mod tests {
         let mut covered = 0;
         for k in 0..50_000 {
             let range = if k % 2 == 0 { 256 * 6 } else { 256 * 3000 };
-            #[expect(clippy::cast_possible_truncation, reason = "inside the guard band")]
-            let v: [WindowVertex; 3] = std::array::from_fn(|_| WindowVertex {
-                x: (256 * 10 + next(range)) as i32,
-                y: (256 * 10 + next(range)) as i32,
-                z: 0.5,
+            let v: [WindowVertex; 3] = std::array::from_fn(|_| {
+                #[expect(clippy::cast_possible_truncation, reason = "inside the guard band")]
+                let (x, y) = (
+                    (256 * 10 + next(range)) as i32,
+                    (256 * 10 + next(range)) as i32,
+                );
+                WindowVertex {
+                    x,
+                    y,
+                    z: 0.5,
+                    unsnapped_x: f64::from(x),
+                    unsnapped_y: f64::from(y),
+                }
             });
             let area = (i64::from(v[1].x) - i64::from(v[0].x))
                 * (i64::from(v[2].y) - i64::from(v[0].y))
@@ -807,7 +896,7 @@ mod tests {
             if area == 0 {
                 continue;
             }
-            let e = edges(&counter_clockwise(&v, area));
+            let e = edges(&v, area);
             let (i, j) = (10 + next(3), 10 + next(3));
             for (w, h) in [(1, 1), (2, 1), (1, 2)] {
                 let b = PixelBox {

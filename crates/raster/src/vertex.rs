@@ -1,15 +1,23 @@
 //! The vertex stage: world position → clip space (f64, fixed operation order), the clip test, and
-//! for vertices inside the clip volume the window position snapped to the fixed-point grid.
+//! for vertices inside the clip volume the window position, both snapped to the fixed-point grid
+//! and as it was before snapping.
 //!
 //! Clip space is GL's: a point is inside when `−w ≤ z ≤ w` (near and far planes) and, for x and y,
 //! inside the guard band `|x| ≤ g_x·w`, `|y| ≤ g_y·w` with `g = 1 + 2·GUARD_BAND/size`. Window
 //! coordinates are `x_w = (x/w)·W/2 + W/2`, `y_w = (y/w)·H/2 + H/2` (y up, GL) and depth
 //! `z_w = (z/w)/2 + 1/2`, the quotients formed as products with `1/w`.
+//!
+//! A window vertex keeps both positions because they serve different ends: coverage is decided on
+//! the snapped grid (exact, so shared edges stay watertight), while depth is interpolated from the
+//! unsnapped position, as GL defines it. Interpolating it from the snapped one moved the whole plane
+//! by up to half a grid unit times its gradient: up to 6e-6 in window depth on the steep planes of
+//! tests/raster/exact_depth.rs, and a wrong 16-bit value at two thirds of a grazing ground plane's
+//! texels.
 
 use glam::{DMat4, DVec3, DVec4};
 use wide::{f64x4, i64x4};
 
-use crate::fixed::{GUARD_BAND, snap, snapped};
+use crate::fixed::{GUARD_BAND, SUBPIXELS_F64, snap, snapped};
 
 /// Bits of a vertex's clip code: which planes of the clip volume it lies outside of.
 pub(crate) mod code {
@@ -29,15 +37,20 @@ pub(crate) mod code {
     pub(crate) const NOT_FINITE: u8 = 128;
 }
 
-/// A vertex inside the clip volume, in window space: x and y on the fixed-point grid, depth in f64.
+/// A vertex inside the clip volume, in window space: x and y on the fixed-point grid (for
+/// coverage) and before snapping (for depth), depth in f64.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub(crate) struct WindowVertex {
-    /// x in grid units.
+    /// x in grid units, snapped: the nearest integer to `unsnapped_x`, ties to even.
     pub(crate) x: i32,
-    /// y in grid units.
+    /// y in grid units, snapped.
     pub(crate) y: i32,
     /// Window depth in `[0, 1]`.
     pub(crate) z: f64,
+    /// x in grid units before snapping (the window x times [`crate::fixed::SUBPIXELS`], exactly).
+    pub(crate) unsnapped_x: f64,
+    /// y in grid units before snapping.
+    pub(crate) unsnapped_y: f64,
 }
 
 /// The viewport: the target's size and the guard-band factors derived from it.
@@ -108,6 +121,8 @@ impl Viewport {
             x: snap(x),
             y: snap(y),
             z,
+            unsnapped_x: x * SUBPIXELS_F64,
+            unsnapped_y: y * SUBPIXELS_F64,
         }
     }
 }
@@ -145,7 +160,7 @@ pub(crate) fn transform_vertices(
     let mut window = window.chunks_exact_mut(4);
     let mut codes = codes.chunks_exact_mut(4);
     for ((p, w), c) in (&mut positions).zip(&mut window).zip(&mut codes) {
-        let (quad_codes, [x, y, z]) = viewport.quad(m, p);
+        let (quad_codes, [x, y, z, unsnapped_x, unsnapped_y]) = viewport.quad(m, p);
         for k in 0..4 {
             c[k] = quad_codes[k];
             if c[k] == 0 {
@@ -153,6 +168,8 @@ pub(crate) fn transform_vertices(
                     x: snapped(x[k]),
                     y: snapped(y[k]),
                     z: z[k].clamp(0.0, 1.0),
+                    unsnapped_x: unsnapped_x[k],
+                    unsnapped_y: unsnapped_y[k],
                 };
             }
         }
@@ -173,9 +190,10 @@ pub(crate) fn transform_vertices(
 
 impl Viewport {
     /// The clip codes of four points and, meaningful where the code is 0, their window x and y in
-    /// grid units, rounded to the grid (for [`snapped`]), and their window depth before clamping.
+    /// grid units rounded to the grid (for [`snapped`]), their window depth before clamping, and
+    /// their window x and y in grid units before rounding.
     #[inline(always)]
-    fn quad(&self, m: &DMat4, p: &[DVec3]) -> ([u8; 4], [[f64; 4]; 3]) {
+    fn quad(&self, m: &DMat4, p: &[DVec3]) -> ([u8; 4], [[f64; 4]; 5]) {
         let lanes = |f: fn(&DVec3) -> f64| f64x4::new([f(&p[0]), f(&p[1]), f(&p[2]), f(&p[3])]);
         let (px, py, pz) = (lanes(|p| p.x), lanes(|p| p.y), lanes(|p| p.z));
         // `transform`, lane-wise: each row summed left to right.
@@ -211,9 +229,9 @@ impl Viewport {
             f64x4::splat(self.half_width),
             f64x4::splat(self.half_height),
         );
-        let grid = f64x4::splat(crate::fixed::SUBPIXELS_F64);
-        let wx = (((x * inverse_w) * half_width + half_width) * grid).round_ties_even();
-        let wy = (((y * inverse_w) * half_height + half_height) * grid).round_ties_even();
+        let grid = f64x4::splat(SUBPIXELS_F64);
+        let unsnapped_x = ((x * inverse_w) * half_width + half_width) * grid;
+        let unsnapped_y = ((y * inverse_w) * half_height + half_height) * grid;
         let wz = (z * inverse_w) * f64x4::HALF + f64x4::HALF;
         #[expect(
             clippy::cast_possible_truncation,
@@ -221,7 +239,16 @@ impl Viewport {
             reason = "a code is at most NOT_FINITE"
         )]
         let codes = codes.map(|c| c as u8);
-        (codes, [wx.to_array(), wy.to_array(), wz.to_array()])
+        (
+            codes,
+            [
+                unsnapped_x.round_ties_even().to_array(),
+                unsnapped_y.round_ties_even().to_array(),
+                wz.to_array(),
+                unsnapped_x.to_array(),
+                unsnapped_y.to_array(),
+            ],
+        )
     }
 }
 
@@ -229,10 +256,10 @@ impl Viewport {
 mod tests {
     use super::*;
 
-    /// The four-lane vertex stage gives the same codes and window vertices as the scalar functions,
-    /// bit for bit, for points inside, on and outside every plane and the guard band, behind the
-    /// eye, at `w = 0`, and with non-finite coordinates; and leaves the window vertices of points
-    /// outside untouched.
+    /// The four-lane vertex stage gives the same codes and window vertices (snapped and unsnapped)
+    /// as the scalar functions, bit for bit, for points inside, on and outside every plane and the
+    /// guard band, behind the eye, at `w = 0`, and with non-finite coordinates; and leaves the
+    /// window vertices of points outside untouched.
     #[test]
     fn four_lanes_match_the_scalar_stage() {
         let mut random = crate::test_random::XorShift::new(0x2545_f491_4f6c_dd1d);
@@ -296,6 +323,8 @@ mod tests {
             x: 7,
             y: -7,
             z: 0.25,
+            unsnapped_x: 7.25,
+            unsnapped_y: -7.25,
         };
         let (mut seen, mut inside) = (0, 0);
         for m in [perspective, orthographic, flat] {
@@ -320,6 +349,9 @@ mod tests {
                         assert_eq!(window[k].x, expected.x, "{p:?}");
                         assert_eq!(window[k].y, expected.y, "{p:?}");
                         assert_eq!(window[k].z.to_bits(), expected.z.to_bits(), "{p:?}");
+                        let unsnapped =
+                            |v: &WindowVertex| (v.unsnapped_x.to_bits(), v.unsnapped_y.to_bits());
+                        assert_eq!(unsnapped(&window[k]), unsnapped(&expected), "{p:?}");
                     }
                 }
             }
