@@ -32,13 +32,14 @@ fn fnv1a(bytes: impl IntoIterator<Item = u8>) -> u64 {
     })
 }
 
-fn techniques() -> [Technique; 6] {
+fn techniques() -> [Technique; 7] {
     [
         Technique::Uniform,
         Technique::UniformLimited,
         Technique::Psm,
         Technique::Lispsm(shadowlab_shadow::WarpChoice::PAPER),
         Technique::LOGARITHMIC,
+        Technique::Logarithmic(shadowlab_shadow::LogarithmicChoice::Faces),
         Technique::Optimal(StepDirection::Paper),
     ]
 }
@@ -84,7 +85,12 @@ fn frames() -> String {
                 Err(ShadowError::NotDefined { reason, .. }) => format!("not defined: {reason}"),
                 Err(e) => panic!("{name} with {technique}: {e}"),
             };
-            writeln!(out, "{name} {} {line}", technique.key()).unwrap();
+            let label = technique
+                .parameter()
+                .map_or(technique.key().to_string(), |p| {
+                    format!("{}/{p}", technique.key())
+                });
+            writeln!(out, "{name} {label} {line}").unwrap();
         }
     }
     out
