@@ -2,7 +2,7 @@
 
 use std::fs;
 
-use crate::support::{shadowlab, stderr, stdout};
+use crate::support::{assert_refused, shadowlab, stderr, stdout};
 
 /// A small scene file: a plane and a box under a sun; `extra` is appended.
 fn scene_file(dir: &std::path::Path, extra: &str) -> String {
@@ -293,19 +293,7 @@ fn bad_input_exits_with_2_and_names_the_problem() {
         ),
     ];
     for (args, expected) in cases {
-        let args: Vec<&str> = args.iter().map(String::as_str).collect();
-        let output = shadowlab(&args, None);
-        assert_eq!(
-            output.status.code(),
-            Some(2),
-            "{args:?}: {}",
-            stderr(&output)
-        );
-        assert!(
-            stderr(&output).contains(expected),
-            "{args:?}: {}",
-            stderr(&output)
-        );
+        assert_refused(&args, expected);
     }
     // A broken scene file names the file and the field.
     let broken = scenes.path().join("broken.toml");

@@ -22,3 +22,13 @@ pub(crate) fn stdout(output: &Output) -> String {
 pub(crate) fn stderr(output: &Output) -> String {
     String::from_utf8(output.stderr.clone()).expect("UTF-8 output")
 }
+
+/// Runs `shadowlab` with `args` and asserts that it refuses them as an input error: exit code 2
+/// and a message on standard error that contains `expected`.
+pub(crate) fn assert_refused<S: AsRef<str>>(args: &[S], expected: &str) {
+    let args: Vec<&str> = args.iter().map(AsRef::as_ref).collect();
+    let output = shadowlab(&args, None);
+    let message = stderr(&output);
+    assert_eq!(output.status.code(), Some(2), "{args:?}: {message}");
+    assert!(message.contains(expected), "{args:?}: {message}");
+}

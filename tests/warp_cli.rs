@@ -8,7 +8,7 @@ use std::path::Path;
 use serde_json::Value;
 use shadowlab_shadow::optimal::{BORDER, INITIAL_MAP_RESOLUTION, ITERATIONS, READBACK_SIZE};
 
-use crate::support::{shadowlab, stderr, stdout};
+use crate::support::{assert_refused, shadowlab, stderr, stdout};
 
 /// A small scene in a file of its own in `dir`, with `shadow` as its `[shadow]` table.
 fn scene_with(dir: &Path, shadow: &str) -> String {
@@ -274,18 +274,6 @@ fn bad_stated_values_exit_2_and_name_the_flag_or_field() {
         ),
     ];
     for (args, expected) in cases {
-        let args: Vec<&str> = args.iter().map(String::as_str).collect();
-        let output = shadowlab(&args, None);
-        assert_eq!(
-            output.status.code(),
-            Some(2),
-            "{args:?}: {}",
-            stderr(&output)
-        );
-        assert!(
-            stderr(&output).contains(expected),
-            "{args:?}: {}",
-            stderr(&output)
-        );
+        assert_refused(&args, expected);
     }
 }

@@ -24,10 +24,10 @@ use shadowlab_hull::{ConvexHull2, ConvexPolyhedron, FAR, NEAR, Plane, Tolerances
 use shadowlab_params::LightAngle;
 
 use crate::error::ShadowError;
+use crate::focus::{focus_polyhedron, view_model};
 use crate::frame::LightFrame;
 use crate::input::PlanInput;
 use crate::logarithmic::{self, Reference};
-use crate::plan::{focus_polyhedron, view_model};
 use crate::setup::LightSetup;
 use crate::technique::{LogarithmicChoice, Technique};
 

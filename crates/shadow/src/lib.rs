@@ -26,6 +26,7 @@
 
 mod error;
 pub mod faces;
+mod focus;
 mod frame;
 mod input;
 pub mod logarithmic;

@@ -29,9 +29,9 @@ use glam::{DMat4, DVec2, DVec3};
 use shadowlab_params::{FrustumModel, LightAngle, gmnpr};
 
 use crate::error::ShadowError;
+use crate::focus::{focus_points, view_model};
 use crate::frame::LightFrame;
 use crate::input::PlanInput;
-use crate::plan::{focus_points, view_model};
 use crate::setup::{LightSetup, ShadowMapping, WarpReport};
 use crate::technique::{LogarithmicChoice, Technique};
 use crate::warp::Extents;

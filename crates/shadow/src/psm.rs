@@ -32,8 +32,8 @@ use shadowlab_hull::{
 };
 
 use crate::error::ShadowError;
+use crate::focus::view_model;
 use crate::input::{FocusPolicy, PlanInput};
-use crate::plan::view_model;
 use crate::setup::{LightSetup, PsmReport, ShadowMapping};
 use crate::technique::Technique;
 use crate::warp;

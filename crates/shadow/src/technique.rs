@@ -57,7 +57,7 @@ impl StepDirection {
 }
 
 /// How LiSPSM's `n` (or λ = n/d) is chosen. Each choice computes what its source computes, in the
-/// source's own units ([`crate::parameter`]); `inspect` prints the inputs and the formula.
+/// source's own units (the crate's `parameter` module); `inspect` prints the inputs and the formula.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum WarpChoice {
     /// A rule of the papers. `lispsm` and `lispsm_dz` give `n` in world units from the camera's
@@ -175,13 +175,10 @@ impl WarpChoice {
     /// # Errors
     /// An unknown name or a bad number, with the known names.
     pub fn parse(spec: &str) -> Result<Self, String> {
-        if let Some(value) = stated(spec, "lambda")? {
-            return WarpParameter::from_lambda(value)
-                .map(Self::Lambda)
-                .map_err(|e| e.to_string());
-        }
-        if let Some(value) = stated(spec, "n")? {
-            return NearDistance::new(value).map(Self::NearDistance);
+        match stated_warp(spec)? {
+            Some(Stated::Lambda(warp)) => return Ok(Self::Lambda(warp)),
+            Some(Stated::NearDistance(n)) => return Ok(Self::NearDistance(n)),
+            None => {}
         }
         Self::named()
             .into_iter()
@@ -235,13 +232,10 @@ impl LogarithmicChoice {
     /// # Errors
     /// An unknown name or a bad number.
     pub fn parse(spec: &str) -> Result<Self, String> {
-        if let Some(value) = stated(spec, "lambda")? {
-            return WarpParameter::from_lambda(value)
-                .map(Self::Lambda)
-                .map_err(|e| e.to_string());
-        }
-        if let Some(value) = stated(spec, "n")? {
-            return NearDistance::new(value).map(Self::NearDistance);
+        match stated_warp(spec)? {
+            Some(Stated::Lambda(warp)) => return Ok(Self::Lambda(warp)),
+            Some(Stated::NearDistance(n)) => return Ok(Self::NearDistance(n)),
+            None => {}
         }
         match spec {
             "eye" => Ok(Self::Eye),
@@ -263,6 +257,24 @@ impl fmt::Display for LogarithmicChoice {
             Self::NearDistance(n) => write!(f, "n={}", n.get()),
         }
     }
+}
+
+/// A warp stated in a parameter spec.
+enum Stated {
+    Lambda(WarpParameter),
+    NearDistance(NearDistance),
+}
+
+/// The warp `lambda=L` or `n=N` states, `None` for any other spec.
+fn stated_warp(spec: &str) -> Result<Option<Stated>, String> {
+    if let Some(value) = stated(spec, "lambda")? {
+        return WarpParameter::from_lambda(value)
+            .map(|w| Some(Stated::Lambda(w)))
+            .map_err(|e| e.to_string());
+    }
+    stated(spec, "n")?
+        .map(|value| NearDistance::new(value).map(Stated::NearDistance))
+        .transpose()
 }
 
 /// The number after `name=` in `spec`, `None` if `spec` does not start so.
