@@ -307,6 +307,33 @@ fn rasterize_narrow<S: Sink>(
     passed
 }
 
+/// A sink for the tests: every covered pixel a path sends, with its depth's bits.
+#[cfg(test)]
+#[derive(Default)]
+pub(crate) struct Recorder(pub(crate) Vec<(usize, u64)>);
+
+#[cfg(test)]
+impl Sink for Recorder {
+    fn row<const SPLIT: usize>(
+        &mut self,
+        start: usize,
+        uncovered: &Lanes<u32>,
+        z: &Lanes<f64>,
+        _triangle: u32,
+    ) -> u64 {
+        for k in (0..BLOCK).filter(|&k| uncovered[k] == 0) {
+            self.0
+                .push((start + (k / HALF) * SPLIT + k % HALF, z[k].to_bits()));
+        }
+        0
+    }
+
+    fn fragment(&mut self, index: usize, z: f64, _triangle: u32) -> u64 {
+        self.0.push((index, z.to_bits()));
+        0
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -352,31 +379,6 @@ mod tests {
                     }
                 }
             }
-        }
-    }
-
-    /// Records every covered pixel a path sends, with its depth's bits.
-    #[derive(Default)]
-    struct Recorder(Vec<(usize, u64)>);
-
-    impl Sink for Recorder {
-        fn row<const SPLIT: usize>(
-            &mut self,
-            start: usize,
-            uncovered: &Lanes<u32>,
-            z: &Lanes<f64>,
-            _triangle: u32,
-        ) -> u64 {
-            for k in (0..BLOCK).filter(|&k| uncovered[k] == 0) {
-                self.0
-                    .push((start + (k / HALF) * SPLIT + k % HALF, z[k].to_bits()));
-            }
-            0
-        }
-
-        fn fragment(&mut self, index: usize, z: f64, _triangle: u32) -> u64 {
-            self.0.push((index, z.to_bits()));
-            0
         }
     }
 

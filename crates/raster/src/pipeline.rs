@@ -778,32 +778,8 @@ impl<F: FnMut(Fragment)> Sink for CallbackSink<'_, F> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::kernel::Recorder;
     use crate::triangle::PixelBox;
-
-    /// Records the covered pixels the tile pass sends, with their depths' bits.
-    #[derive(Default)]
-    struct Recorder(Vec<(usize, u64)>);
-
-    impl Sink for Recorder {
-        fn row<const SPLIT: usize>(
-            &mut self,
-            start: usize,
-            uncovered: &Lanes<u32>,
-            z: &Lanes<f64>,
-            _triangle: u32,
-        ) -> u64 {
-            for k in (0..BLOCK).filter(|&k| uncovered[k] == 0) {
-                self.0
-                    .push((start + (k / HALF) * SPLIT + k % HALF, z[k].to_bits()));
-            }
-            0
-        }
-
-        fn fragment(&mut self, index: usize, z: f64, _triangle: u32) -> u64 {
-            self.0.push((index, z.to_bits()));
-            0
-        }
-    }
 
     /// The early fragments binning finds for a tiny triangle are the pixels, with the same depth
     /// bits, that the tile pass draws for it, for triangles off the grid (unsnapped positions up to
