@@ -219,9 +219,14 @@ pub fn serving<T>(
         .iter()
         .rposition(|p| partition(p).near <= depth)
         .unwrap_or(0);
-    let Some(near) = partitions.get(last).map(|p| partition(p).near) else {
+    let Some(serving) = partitions.get(last).map(&partition) else {
         return 0;
     };
+    // A z-partition without faces is one map: the common case, decided without more work.
+    if serving.face.is_none() {
+        return last;
+    }
+    let near = serving.near;
     let first = partitions[..last]
         .iter()
         .rposition(|p| partition(p).near != near)
