@@ -20,8 +20,9 @@ pub const NEAR: usize = 4;
 /// Index of the far plane in [`Frustum::planes`].
 pub const FAR: usize = 5;
 
-/// For each plane (in [`Frustum::planes`] order), the four corners on it.
-pub(crate) const FACE_CORNERS: [[usize; 4]; 6] = [
+/// For each plane (in [`Frustum::planes`] order), the four corners on it, counter-clockwise seen
+/// from outside.
+pub const FACE_CORNERS: [[usize; 4]; 6] = [
     [0, 4, 6, 2],
     [1, 3, 7, 5],
     [0, 1, 5, 4],

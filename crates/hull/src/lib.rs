@@ -72,7 +72,7 @@ pub use aabb::Aabb;
 pub use camera::{NdcDepth, Orthographic, Perspective, ViewPose};
 pub use error::{Degeneracy, HullError, ValidationError};
 pub use focus::{eye_depth_range, focus_body, psm_near_body, visible_body};
-pub use frustum::{BOTTOM, FAR, Frustum, LEFT, NEAR, RIGHT, TOP};
+pub use frustum::{BOTTOM, FACE_CORNERS, FAR, Frustum, LEFT, NEAR, RIGHT, TOP};
 pub use hull2::{Aabb2, ConvexHull2, ConvexPolygon2, convex_hull_2d};
 pub use light::Light;
 pub use light_space::{LightSpace, SINGULAR_AXIS_LENGTH, light_view_angle};

@@ -20,7 +20,9 @@
 //! uniform end faces, and every face's map at the full resolution, as z-partitions have.
 
 use glam::{DMat4, DVec2, DVec3, DVec4};
-use shadowlab_hull::{ConvexHull2, ConvexPolyhedron, FAR, NEAR, Plane, Tolerances, convex_hull_2d};
+use shadowlab_hull::{
+    ConvexHull2, ConvexPolyhedron, FACE_CORNERS, FAR, NEAR, Plane, Tolerances, convex_hull_2d,
+};
 use shadowlab_params::LightAngle;
 
 use crate::error::ShadowError;
@@ -34,17 +36,6 @@ use crate::technique::{LogarithmicChoice, Technique};
 /// Faces whose unit normal has a component toward or away from the light of at most this are seen
 /// edge-on: their projection has no area.
 pub const EDGE_ON: f64 = 1e-9;
-
-/// The corners of each face of a frustum, in the order of its planes (left, right, bottom, top,
-/// near, far; corner bit 0 right, bit 1 top, bit 2 far).
-const FACE_CORNERS: [[usize; 4]; 6] = [
-    [0, 2, 6, 4],
-    [1, 3, 7, 5],
-    [0, 1, 5, 4],
-    [2, 3, 7, 6],
-    [0, 1, 3, 2],
-    [4, 5, 7, 6],
-];
 
 /// The part of the light's view a face partition serves: a convex polygon on the plane across the
 /// light, in the (x, z) coordinates of the light space `world_to_light` maps to.
