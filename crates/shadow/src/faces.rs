@@ -29,7 +29,7 @@ use crate::error::ShadowError;
 use crate::focus::{focus_polyhedron, view_model};
 use crate::frame::LightFrame;
 use crate::input::PlanInput;
-use crate::logarithmic::{self, Reference};
+use crate::logarithmic::{self, ReferenceRule};
 use crate::setup::LightSetup;
 use crate::technique::{LogarithmicChoice, Technique};
 
@@ -131,9 +131,9 @@ pub(crate) fn plan(input: &PlanInput) -> Result<Vec<FacePlan>, ShadowError> {
                 .map(|p| p.normalize_or_zero())
                 .sum::<DVec2>()
                 .normalize_or_zero();
-            (frame.turned(bisector), Reference::Eye)
+            (frame.turned(bisector), ReferenceRule::Eye)
         } else {
-            (frame, Reference::Uniform)
+            (frame, ReferenceRule::Uniform)
         };
         let setup = logarithmic::plan_in(
             technique,

@@ -220,7 +220,7 @@ pub fn reference_lambda(z_max: f64, depth: f64, model: &FrustumModel, gamma: Lig
 
 /// How a logarithmic map's reference point is placed.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) enum Reference {
+pub(crate) enum ReferenceRule {
     /// shadowlab's rule, [`reference_lambda`].
     Rule,
     /// The eye, where it lies beyond B's near plane (a face partition's side face always has it
@@ -245,9 +245,9 @@ pub(crate) fn plan(
 ) -> Result<LightSetup, ShadowError> {
     let technique = Technique::Logarithmic(choice);
     let reference = match choice {
-        LogarithmicChoice::Eye => Reference::Rule,
-        LogarithmicChoice::Lambda(warp) => Reference::Lambda(warp.lambda()),
-        LogarithmicChoice::NearDistance(n) => Reference::NearDistance(n.get()),
+        LogarithmicChoice::Eye => ReferenceRule::Rule,
+        LogarithmicChoice::Lambda(warp) => ReferenceRule::Lambda(warp.lambda()),
+        LogarithmicChoice::NearDistance(n) => ReferenceRule::NearDistance(n.get()),
         LogarithmicChoice::Faces => {
             return Err(ShadowError::NotDefined {
                 technique: technique.key(),
@@ -282,7 +282,7 @@ pub(crate) fn plan_in(
     technique: Technique,
     frame: &LightFrame,
     world_points: Vec<DVec3>,
-    reference: Reference,
+    reference: ReferenceRule,
     model: &FrustumModel,
     gamma: LightAngle,
     half_fov: f64,
@@ -298,7 +298,7 @@ pub(crate) fn plan_in(
     let common = [("gamma_degrees", gamma.degrees()), ("d", depth)];
     let eye = -extents.max.z / depth;
     let (lambda, formula, inputs) = match reference {
-        Reference::Rule => (
+        ReferenceRule::Rule => (
             reference_lambda(extents.max.z, depth, model, gamma),
             "λ = max(−z_max/d, λ_mm(γ) − λ_mm(φ) below φ, 0.1·z_n/(z_f − z_n)): the reference \
              point at the eye where it lies beyond B's near plane, else held outside B where the \
@@ -313,19 +313,19 @@ pub(crate) fn plan_in(
                 common[1],
             ],
         ),
-        Reference::Eye => (
+        ReferenceRule::Eye => (
             eye.max(MIN_LAMBDA),
             "λ = −z_max/d: the reference point at the eye (Lloyd et al.'s face partitioning, a \
              side face)",
             vec![("z_max", extents.max.z), common[0], common[1]],
         ),
-        Reference::Uniform => (
+        ReferenceRule::Uniform => (
             f64::INFINITY,
             "λ = ∞: a uniform map (Lloyd et al.'s face partitioning, an end face)",
             common.to_vec(),
         ),
-        Reference::Lambda(lambda) => (lambda, "λ as stated", common.to_vec()),
-        Reference::NearDistance(n) => (n / depth, "n as stated", common.to_vec()),
+        ReferenceRule::Lambda(lambda) => (lambda, "λ as stated", common.to_vec()),
+        ReferenceRule::NearDistance(n) => (n / depth, "n as stated", common.to_vec()),
     };
     if lambda < MIN_LAMBDA {
         return Err(ShadowError::NotDefined {
