@@ -1,6 +1,6 @@
 //! `shadowlab analyze`, `sweep-angle` and `temporal`: the measurements, written as reports.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use indicatif::{ProgressBar, ProgressStyle};
 use shadowlab_analysis::report::{filter_label, technique_label};
@@ -11,7 +11,7 @@ use shadowlab_shadow::{Bias, Filter, Splits};
 
 use crate::args::{AnalyzeArgs, StudyView, SweepArgs, TemporalArgs};
 use crate::error::CliError;
-use crate::output::{ensure_directory, print_line, write_atomic};
+use crate::output::{OutputDir, TEXT_BOUND, png_bound, print_line, slug};
 use crate::shadow_settings::{
     load_scene_argument, optimizer_flags, parse_techniques, technique_list,
 };
@@ -28,16 +28,20 @@ fn progress_bar(what: &str) -> ProgressBar {
     bar
 }
 
-fn write_all(dir: &Path, files: &[(String, Vec<u8>)]) -> Result<(), CliError> {
-    ensure_directory(dir, "--out")?;
-    for (name, bytes) in files {
-        let path = dir.join(name);
-        if let Some(parent) = path.parent() {
-            ensure_directory(parent, "--out")?;
-        }
-        write_atomic(&path, bytes)?;
-    }
-    Ok(())
+/// The output set of a study command: `--out`, or `out/<command>/<scene>` with the scene's name
+/// made safe as a path component; checked before any work.
+fn output_dir(
+    out: Option<&PathBuf>,
+    command: &str,
+    scene: &Scene,
+    estimate: u64,
+) -> Result<OutputDir, CliError> {
+    let target = out.cloned().unwrap_or_else(|| {
+        PathBuf::from("out")
+            .join(command)
+            .join(slug(&scene.name, "scene"))
+    });
+    OutputDir::check(target, "--out", estimate)
 }
 
 pub(crate) fn analyze(args: &AnalyzeArgs) -> Result<(), CliError> {
@@ -71,6 +75,10 @@ pub(crate) fn analyze(args: &AnalyzeArgs) -> Result<(), CliError> {
         optimal: optimizer_flags(&args.optimizer)?,
         focus: args.focus,
     };
+    // Two pictures per technique at the picture resolution.
+    let estimate =
+        TEXT_BOUND + 2 * options.techniques.len() as u64 * png_bound(scene.camera.width, scene.camera.height, 3);
+    let out = output_dir(args.out.as_ref(), "analyze", &scene, estimate)?;
     let bar = progress_bar("analyze");
     let result = study::run(&scene, &options, |done, total| {
         bar.set_length(total as u64);
@@ -103,11 +111,7 @@ pub(crate) fn analyze(args: &AnalyzeArgs) -> Result<(), CliError> {
             image_out::rgb_png(&pictures.difference, w, h).map_err(failure)?,
         ));
     }
-    let out = args
-        .out
-        .clone()
-        .unwrap_or_else(|| PathBuf::from("out/analyze").join(&scene.name));
-    write_all(&out, &files)?;
+    out.write("analyze", &files)?;
     for m in report::pareto_front(&study) {
         let o = m.outcome.as_ref().expect("defined");
         print_line(&format!(
@@ -120,7 +124,7 @@ pub(crate) fn analyze(args: &AnalyzeArgs) -> Result<(), CliError> {
             o.time().as_secs_f64() * 1e3
         ))?;
     }
-    print_line(&out.join("report.md").display().to_string())
+    print_line(&out.path().join("report.md").display().to_string())
 }
 
 /// The scene of `sweep-angle` and `temporal`, at the eye image size asked for.
@@ -141,6 +145,7 @@ pub(crate) fn sweep_angle(args: &SweepArgs) -> Result<(), CliError> {
         sweep::Side::Front
     };
     let angles = sweep::default_angles();
+    let out = output_dir(args.out.as_ref(), "sweep", &scene, TEXT_BOUND)?;
     let bar = progress_bar("sweep");
     let result = sweep::sweep(
         &scene,
@@ -157,13 +162,9 @@ pub(crate) fn sweep_angle(args: &SweepArgs) -> Result<(), CliError> {
     let points = result.map_err(|e| CliError::Input(format!("{}: {e}", scene.name)))?;
     let written = sweep::write(&scene.name, &points)
         .map_err(|e| CliError::Failure(anyhow::anyhow!("{e}")))?;
-    let out = args
-        .out
-        .clone()
-        .unwrap_or_else(|| PathBuf::from("out/sweep").join(&scene.name));
-    write_all(&out, &written)?;
+    out.write("sweep-angle", &written)?;
     for (name, _) in &written {
-        print_line(&out.join(name).display().to_string())?;
+        print_line(&out.path().join(name).display().to_string())?;
     }
     Ok(())
 }
@@ -171,6 +172,7 @@ pub(crate) fn sweep_angle(args: &SweepArgs) -> Result<(), CliError> {
 pub(crate) fn temporal(args: &TemporalArgs) -> Result<(), CliError> {
     let scene = study_scene(args.scene.as_deref(), &args.view)?;
     let techniques = parse_techniques(&args.techniques, "--techniques")?;
+    let out = output_dir(args.out.as_ref(), "temporal", &scene, TEXT_BOUND)?;
     let bar = progress_bar("temporal");
     let result = temporal::temporal(
         &scene,
@@ -185,13 +187,9 @@ pub(crate) fn temporal(args: &TemporalArgs) -> Result<(), CliError> {
     bar.finish_and_clear();
     let stability = result.map_err(|e| CliError::Input(format!("{}: {e}", scene.name)))?;
     let written = temporal::write(&scene.name, &stability);
-    let out = args
-        .out
-        .clone()
-        .unwrap_or_else(|| PathBuf::from("out/temporal").join(&scene.name));
-    write_all(&out, &written)?;
+    out.write("temporal", &written)?;
     for (name, _) in &written {
-        print_line(&out.join(name).display().to_string())?;
+        print_line(&out.path().join(name).display().to_string())?;
     }
     Ok(())
 }

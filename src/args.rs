@@ -332,7 +332,7 @@ pub(crate) struct RenderMeshArgs {
     #[arg(long)]
     pub(crate) npy: bool,
     /// Directory to write into (created if missing): MESH-light.{png,exr}, MESH-eye.{png,exr}.
-    #[arg(long, default_value = "out/render")]
+    #[arg(long, default_value = "out/render-mesh")]
     pub(crate) out: PathBuf,
 }
 

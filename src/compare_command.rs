@@ -9,7 +9,7 @@ use tiny_skia::{Color, Pixmap, PixmapPaint, Transform};
 
 use crate::args::CompareArgs;
 use crate::error::CliError;
-use crate::output::{print_line, write_atomic};
+use crate::output::{OutputFile, png_bound, print_line};
 use crate::shadow_settings::{load_scene_argument, optimizer_flags, technique_list};
 
 /// Height of a picture's label, in pixels.
@@ -41,6 +41,11 @@ pub(crate) fn run(args: &CompareArgs) -> Result<(), CliError> {
         rows * tile_h + (rows + 1) * GAP,
     )
     .ok_or_else(|| CliError::Input("invalid --crop: the picture would be empty".into()))?;
+    let out = OutputFile::check(
+        args.out.clone(),
+        "--out",
+        png_bound(canvas.width(), canvas.height(), 4),
+    )?;
     canvas.fill(Color::WHITE);
     for (k, technique) in techniques.iter().enumerate() {
         let options = FrameOptions {
@@ -111,11 +116,8 @@ pub(crate) fn run(args: &CompareArgs) -> Result<(), CliError> {
         draw(&mut canvas, &text, x, y + ch)?;
     }
     let png = canvas.encode_png().context("cannot encode the picture")?;
-    if let Some(dir) = args.out.parent().filter(|d| !d.as_os_str().is_empty()) {
-        crate::output::ensure_directory(dir, "--out")?;
-    }
-    write_atomic(&args.out, &png)?;
-    print_line(&args.out.display().to_string())
+    out.write(&png)?;
+    print_line(&out.path().display().to_string())
 }
 
 /// A label as a picture, rendered from SVG with the figures' embedded font.

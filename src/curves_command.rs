@@ -4,7 +4,7 @@ use shadowlab_curves::{CurveConfig, CurvesError, FigureName};
 
 use crate::args::CurvesArgs;
 use crate::error::CliError;
-use crate::output::{ensure_directory, print_line, write_atomic};
+use crate::output::{OutputDir, TEXT_BOUND, print_line};
 
 pub(crate) fn run(args: &CurvesArgs) -> Result<(), CliError> {
     let config =
@@ -14,6 +14,9 @@ pub(crate) fn run(args: &CurvesArgs) -> Result<(), CliError> {
     } else {
         args.figures.clone()
     };
+    // A figure's PNG is a few hundred kilobytes.
+    let estimate = TEXT_BOUND * names.len() as u64;
+    let out = OutputDir::check(args.out.clone(), "--out", estimate)?;
     // Everything is computed and rendered before the first file is written.
     let mut files = Vec::new();
     for name in names {
@@ -30,11 +33,9 @@ pub(crate) fn run(args: &CurvesArgs) -> Result<(), CliError> {
         files.push((format!("{name}.svg"), svg.into_bytes()));
         files.push((format!("{name}.png"), png));
     }
-    ensure_directory(&args.out, "--out")?;
-    for (file, bytes) in &files {
-        let path = args.out.join(file);
-        write_atomic(&path, bytes)?;
-        print_line(&path.display().to_string())?;
+    out.write("curves", &files)?;
+    for (file, _) in &files {
+        print_line(&out.path().join(file).display().to_string())?;
     }
     Ok(())
 }

@@ -4,8 +4,9 @@
 //! the argument fuzzer (`fuzz/`).
 //!
 //! Exit codes: 0 success; 1 an I/O or internal failure; 2 a usage or input error (the message names
-//! the flag or file). Outputs are written to a temporary file beside their destination and renamed
-//! into place, so a failed run leaves nothing half-written.
+//! the flag or file); 130 or 143 when interrupted by SIGINT or SIGTERM. Outputs are written whole
+//! into a staging directory beside their destination and moved into place in one step (see
+//! `output`), so a failed, interrupted or killed run leaves nothing half-written.
 
 mod analyze_command;
 mod args;
@@ -18,6 +19,7 @@ mod params_command;
 mod render_command;
 mod render_mesh_command;
 mod shadow_settings;
+mod staging;
 
 use std::ffi::OsString;
 use std::process::ExitCode;
@@ -38,6 +40,7 @@ where
         // clap prints help and version to stdout with code 0, and usage errors with code 2.
         Err(e) => e.exit(),
     };
+    staging::install_interrupt_cleanup();
     let result = match cli.command {
         Command::Params(args) => params_command::run(&args),
         Command::Curves(args) => curves_command::run(&args),

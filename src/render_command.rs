@@ -7,7 +7,7 @@ use shadowlab_shadow::{FrameOptions, render_frame, scene_eye, view};
 
 use crate::args::RenderArgs;
 use crate::error::CliError;
-use crate::output::{ensure_directory, print_line, write_atomic};
+use crate::output::{OutputDir, png_bound, print_line, slug};
 use crate::shadow_settings::resolve;
 
 pub(crate) fn run(args: &RenderArgs) -> Result<(), CliError> {
@@ -21,11 +21,19 @@ pub(crate) fn run(args: &RenderArgs) -> Result<(), CliError> {
         lookup: resolved.lookup.clone(),
         snap_texels: 0,
     };
+    let target = args.out.clone().unwrap_or_else(|| {
+        PathBuf::from("out/render").join(slug(
+            &format!("{}-{}", scene.name, technique.key()),
+            "render",
+        ))
+    });
+    // The eye view, and per map its depth (16-bit) and its light view (RGB).
+    let maps = u64::try_from(resolved.plan.partitions).unwrap_or(u64::MAX);
+    let estimate = png_bound(scene.camera.width, scene.camera.height, 3)
+        + maps.saturating_mul(png_bound(resolved.resolution, resolved.resolution, 2 + 3));
+    let out = OutputDir::check(target, "--out", estimate)?;
     let frame = render_frame(scene, &options)
         .map_err(|e| CliError::Input(format!("{} with {technique}: {e}", scene.name)))?;
-    let out = args.out.clone().unwrap_or_else(|| {
-        PathBuf::from("out/render").join(format!("{}-{}", scene.name, technique.key()))
-    });
     let image_failure =
         |e: shadowlab_raster::RasterError| CliError::Failure(anyhow::anyhow!("{e}"));
     let mut files = vec![(
@@ -100,11 +108,9 @@ pub(crate) fn run(args: &RenderArgs) -> Result<(), CliError> {
         t.shadow_pass.as_secs_f64() * 1e3,
         t.lookup.as_secs_f64() * 1e3
     ))?;
-    ensure_directory(&out, "--out")?;
-    for (file, bytes) in &files {
-        let path = out.join(file);
-        write_atomic(&path, bytes)?;
-        print_line(&path.display().to_string())?;
+    out.write("render", &files)?;
+    for (file, _) in &files {
+        print_line(&out.path().join(file).display().to_string())?;
     }
     Ok(())
 }

@@ -8,11 +8,15 @@ use shadowlab_scene::benchmark::BenchmarkView;
 
 use crate::args::RenderMeshArgs;
 use crate::error::CliError;
-use crate::output::{ensure_directory, print_line, write_atomic};
+use crate::output::{OutputDir, png_bound, print_line, slug};
 
 pub(crate) fn run(args: &RenderMeshArgs) -> Result<(), CliError> {
-    let mesh = shadowlab_scene::load_obj(&args.mesh).map_err(|e| CliError::Input(e.to_string()))?;
+    // Per pass: EXR and NPY depths (4 bytes a texel, uncompressed) and a 16-bit PNG.
     let (eye_width, eye_height) = args.eye_size;
+    let estimate = png_bound(args.size, args.size, 4 + 4 + 2)
+        + png_bound(eye_width, eye_height, 4 + 4 + 2);
+    let out = OutputDir::check(args.out.clone(), "--out", estimate)?;
+    let mesh = shadowlab_scene::load_obj(&args.mesh).map_err(|e| CliError::Input(e.to_string()))?;
     let view = BenchmarkView::new(&mesh.bounds(), eye_width, eye_height);
     let mut positions = mesh.positions().to_vec();
     let (mut light, mut eye) = (view.light, view.eye);
@@ -24,10 +28,13 @@ pub(crate) fn run(args: &RenderMeshArgs) -> Result<(), CliError> {
         eye = eye.as_mat4().as_dmat4();
     }
     let triangles = Triangles::new(&positions, mesh.triangles());
-    let stem = args
-        .mesh
-        .file_stem()
-        .map_or_else(|| "mesh".into(), |s| s.to_string_lossy().into_owned());
+    let stem = slug(
+        &args
+            .mesh
+            .file_stem()
+            .map_or_else(String::new, |s| s.to_string_lossy().into_owned()),
+        "mesh",
+    );
     let mut passes: Vec<(&str, u32, u32, DMat4)> = Vec::new();
     if !args.eye {
         passes.push(("light", args.size, args.size, light));
@@ -74,11 +81,9 @@ pub(crate) fn run(args: &RenderMeshArgs) -> Result<(), CliError> {
             elapsed.as_secs_f64() * 1e3
         ))?;
     }
-    ensure_directory(&args.out, "--out")?;
-    for (file, bytes) in &files {
-        let path = args.out.join(file);
-        write_atomic(&path, bytes)?;
-        print_line(&path.display().to_string())?;
+    out.write("render-mesh", &files)?;
+    for (file, _) in &files {
+        print_line(&out.path().join(file).display().to_string())?;
     }
     Ok(())
 }

@@ -74,7 +74,10 @@ fn one_pass_only() {
         .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
         .collect();
     names.sort();
-    assert_eq!(names, ["bunny-small-eye.exr", "bunny-small-eye.png"]);
+    assert_eq!(
+        names,
+        ["bunny-small-eye.exr", "bunny-small-eye.png", "manifest.json"]
+    );
 }
 
 #[test]
