@@ -76,8 +76,9 @@ pub(crate) fn analyze(args: &AnalyzeArgs) -> Result<(), CliError> {
         focus: args.focus,
     };
     // Two pictures per technique at the picture resolution.
-    let estimate =
-        TEXT_BOUND + 2 * options.techniques.len() as u64 * png_bound(scene.camera.width, scene.camera.height, 3);
+    let estimate = TEXT_BOUND
+        + 2 * options.techniques.len() as u64
+            * png_bound(scene.camera.width, scene.camera.height, 3);
     let out = output_dir(args.out.as_ref(), "analyze", &scene, estimate)?;
     let bar = progress_bar("analyze");
     let result = study::run(&scene, &options, |done, total| {

@@ -126,6 +126,15 @@ fn absolute_with_parent(path: &Path, flag: &str) -> Result<(PathBuf, PathBuf), C
     }
 }
 
+/// Whether a lookup failed because nothing is there (or a component on the way is not a
+/// directory, which [`check_location`] then names).
+fn is_absent(error: &std::io::Error) -> bool {
+    matches!(
+        error.kind(),
+        std::io::ErrorKind::NotFound | std::io::ErrorKind::NotADirectory
+    )
+}
+
 /// Checks that `parent` is, or can be created as, a writable directory with `needed` bytes free.
 fn check_location(parent: &Path, flag: &str, needed: u64) -> Result<(), CliError> {
     let mut existing = parent;
@@ -236,7 +245,11 @@ impl OutputDir {
     /// Checks `target` (given by `flag`, or a default) before any work: not a link or a
     /// non-directory; if it exists, empty or an earlier shadowlab output set; its location
     /// writable with room for `estimate` bytes.
-    pub(crate) fn check(target: PathBuf, flag: &'static str, estimate: u64) -> Result<Self, CliError> {
+    pub(crate) fn check(
+        target: PathBuf,
+        flag: &'static str,
+        estimate: u64,
+    ) -> Result<Self, CliError> {
         let (absolute, parent) = absolute_with_parent(&target, flag)?;
         match std::fs::symlink_metadata(&absolute) {
             Ok(meta) if meta.is_dir() => {
@@ -258,7 +271,7 @@ impl OutputDir {
                     kind(&meta)
                 )));
             }
-            Err(e) if e.kind() == std::io::ErrorKind::NotFound => {}
+            Err(e) if is_absent(&e) => {}
             Err(e) => {
                 return Err(CliError::Input(format!(
                     "invalid {flag}: cannot use {}: {e}",
@@ -351,8 +364,13 @@ impl OutputDir {
             )))
         };
         loop {
-            match rustix::fs::renameat_with(CWD, staged, CWD, &self.absolute, RenameFlags::NOREPLACE)
-            {
+            match rustix::fs::renameat_with(
+                CWD,
+                staged,
+                CWD,
+                &self.absolute,
+                RenameFlags::NOREPLACE,
+            ) {
                 Ok(()) => return Ok(()),
                 Err(rustix::io::Errno::EXIST | rustix::io::Errno::NOTEMPTY) => {}
                 Err(e) => return Err(moved(e)),
@@ -360,9 +378,7 @@ impl OutputDir {
             // Something is there: it must still be a directory shadowlab may replace.
             let meta = std::fs::symlink_metadata(&self.absolute);
             match meta {
-                Ok(meta)
-                    if meta.is_dir()
-                        && is_replaceable(&self.absolute).unwrap_or(false) => {}
+                Ok(meta) if meta.is_dir() && is_replaceable(&self.absolute).unwrap_or(false) => {}
                 Ok(_) => {
                     return Err(CliError::Input(format!(
                         "invalid {}: {} was changed during the run and is no longer an output \
@@ -384,7 +400,10 @@ impl OutputDir {
                     let aside = staged.with_file_name(format!("{}old", staging::own_prefix()));
                     let aside = Staged::new(aside);
                     std::fs::rename(&self.absolute, &aside.path).with_context(|| {
-                        format!("cannot move the previous set {} aside", self.target.display())
+                        format!(
+                            "cannot move the previous set {} aside",
+                            self.target.display()
+                        )
                     })?;
                     std::fs::rename(staged, &self.absolute).with_context(|| {
                         format!(
@@ -412,7 +431,11 @@ pub(crate) struct OutputFile {
 impl OutputFile {
     /// Checks `target` (given by `flag`) before any work: absent or a regular file, its
     /// directory writable (or creatable) with room for `estimate` bytes.
-    pub(crate) fn check(target: PathBuf, flag: &'static str, estimate: u64) -> Result<Self, CliError> {
+    pub(crate) fn check(
+        target: PathBuf,
+        flag: &'static str,
+        estimate: u64,
+    ) -> Result<Self, CliError> {
         let (absolute, parent) = absolute_with_parent(&target, flag)?;
         check_replaceable_file(&absolute, &target, flag)?;
         check_location(&parent, flag, estimate)?;
@@ -473,7 +496,7 @@ fn check_replaceable_file(absolute: &Path, target: &Path, flag: &str) -> Result<
             target.display(),
             kind(&meta)
         ))),
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(()),
+        Err(e) if is_absent(&e) => Ok(()),
         Err(e) => Err(CliError::Input(format!(
             "invalid {flag}: cannot use {}: {e}",
             target.display()

@@ -13,8 +13,8 @@ use crate::output::{OutputDir, png_bound, print_line, slug};
 pub(crate) fn run(args: &RenderMeshArgs) -> Result<(), CliError> {
     // Per pass: EXR and NPY depths (4 bytes a texel, uncompressed) and a 16-bit PNG.
     let (eye_width, eye_height) = args.eye_size;
-    let estimate = png_bound(args.size, args.size, 4 + 4 + 2)
-        + png_bound(eye_width, eye_height, 4 + 4 + 2);
+    let estimate =
+        png_bound(args.size, args.size, 4 + 4 + 2) + png_bound(eye_width, eye_height, 4 + 4 + 2);
     let out = OutputDir::check(args.out.clone(), "--out", estimate)?;
     let mesh = shadowlab_scene::load_obj(&args.mesh).map_err(|e| CliError::Input(e.to_string()))?;
     let view = BenchmarkView::new(&mesh.bounds(), eye_width, eye_height);

@@ -76,7 +76,11 @@ fn one_pass_only() {
     names.sort();
     assert_eq!(
         names,
-        ["bunny-small-eye.exr", "bunny-small-eye.png", "manifest.json"]
+        [
+            "bunny-small-eye.exr",
+            "bunny-small-eye.png",
+            "manifest.json"
+        ]
     );
 }
 

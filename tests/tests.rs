@@ -7,11 +7,14 @@
 //!   continuity at γ = 0, bad input.
 //! * `render_cli` — `shadowlab render` and `inspect`: the pictures, repeatable, partitions, JSON,
 //!   bad scenes and settings.
+//! * `output_cli` — output sets under faults: rerun, concurrent runs, SIGINT/SIGTERM/SIGKILL, a
+//!   failing write, a full or read-only file system, destinations not shadowlab's, hostile names.
 //! * `warp_cli` — what a user states: `--lambda`, `--n`, `--focus`, the `[shadow]` table and its
 //!   optimizer settings, rules' inputs in `inspect`, defaults in help texts, refusals named.
 
 mod analyze_cli;
 mod curves_cli;
+mod output_cli;
 mod params_cli;
 mod render_cli;
 mod render_mesh_cli;
