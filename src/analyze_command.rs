@@ -11,6 +11,7 @@ use shadowlab_shadow::{Bias, Filter, Splits};
 
 use crate::args::{AnalyzeArgs, StudyView, SweepArgs, TemporalArgs};
 use crate::error::CliError;
+use crate::memory::{self, Workload};
 use crate::output::{OutputDir, TEXT_BOUND, png_bound, print_line, slug};
 use crate::shadow_settings::{
     load_scene_argument, optimizer_flags, parse_techniques, technique_list,
@@ -80,6 +81,25 @@ pub(crate) fn analyze(args: &AnalyzeArgs) -> Result<(), CliError> {
         + 2 * options.techniques.len() as u64
             * png_bound(scene.camera.width, scene.camera.height, 3);
     let out = output_dir(args.out.as_ref(), "analyze", &scene, estimate)?;
+    let largest_map = options
+        .resolutions
+        .iter()
+        .copied()
+        .chain(std::iter::once(options.optimal.initial_resolution))
+        .max()
+        .unwrap_or(0);
+    let maps = options.partitions.iter().copied().max().unwrap_or(1) as u64;
+    memory::check(
+        &Workload::of(
+            &scene,
+            true,
+            largest_map,
+            maps,
+            "camera.image",
+            "--resolutions, --splits",
+        ),
+        args.memory.memory_budget,
+    )?;
     let bar = progress_bar("analyze");
     let result = study::run(&scene, &options, |done, total| {
         bar.set_length(total as u64);
@@ -147,6 +167,17 @@ pub(crate) fn sweep_angle(args: &SweepArgs) -> Result<(), CliError> {
     };
     let angles = sweep::default_angles();
     let out = output_dir(args.out.as_ref(), "sweep", &scene, TEXT_BOUND)?;
+    memory::check(
+        &Workload::of(
+            &scene,
+            true,
+            args.view.resolution,
+            1,
+            "--eye-size or camera.image",
+            "--resolution",
+        ),
+        args.memory.memory_budget,
+    )?;
     let bar = progress_bar("sweep");
     let result = sweep::sweep(
         &scene,
@@ -174,6 +205,17 @@ pub(crate) fn temporal(args: &TemporalArgs) -> Result<(), CliError> {
     let scene = study_scene(args.scene.as_deref(), &args.view)?;
     let techniques = parse_techniques(&args.techniques, "--techniques")?;
     let out = output_dir(args.out.as_ref(), "temporal", &scene, TEXT_BOUND)?;
+    memory::check(
+        &Workload::of(
+            &scene,
+            true,
+            args.view.resolution,
+            1,
+            "--eye-size or camera.image",
+            "--resolution",
+        ),
+        args.memory.memory_budget,
+    )?;
     let bar = progress_bar("temporal");
     let result = temporal::temporal(
         &scene,

@@ -7,6 +7,8 @@ use shadowlab_raster::MAX_TARGET_SIZE;
 use shadowlab_shadow::FocusPolicy;
 use shadowlab_shadow::optimal::{BORDER, INITIAL_MAP_RESOLUTION, ITERATIONS, READBACK_SIZE};
 
+use crate::memory::Bytes;
+
 /// shadowlab: what a shadow-map technique costs and what it buys, with numbers.
 #[derive(Debug, Parser)]
 #[command(name = "shadowlab", version, about, long_about = None)]
@@ -89,6 +91,8 @@ pub(crate) struct AnalyzeArgs {
     /// The scene-optimized map's settings.
     #[command(flatten)]
     pub(crate) optimizer: OptimizerArgs,
+    #[command(flatten)]
+    pub(crate) memory: MemoryArgs,
     /// Directory to write into. Default: out/analyze/SCENE.
     #[arg(long)]
     pub(crate) out: Option<PathBuf>,
@@ -116,6 +120,16 @@ pub(crate) struct StatedWarps {
     /// directional light), as `lispsm:n=N` in the list would.
     #[arg(long = "n", value_delimiter = ',', allow_hyphen_values = true)]
     pub(crate) near_distance: Vec<f64>,
+}
+
+/// The memory a run may plan to use.
+#[derive(Debug, Args)]
+pub(crate) struct MemoryArgs {
+    /// Refuse a run whose estimated memory exceeds SIZE: bytes, or a number with K, M, G or T
+    /// (powers of 1024). Default: 75 % of the memory available to the process (its cgroup's limit
+    /// or the system's).
+    #[arg(long, value_name = "SIZE", value_parser = Bytes::parse)]
+    pub(crate) memory_budget: Option<Bytes>,
 }
 
 /// The map size and eye image of `sweep-angle` and `temporal`.
@@ -147,6 +161,8 @@ pub(crate) struct SweepArgs {
     /// frusta).
     #[arg(long)]
     pub(crate) behind: bool,
+    #[command(flatten)]
+    pub(crate) memory: MemoryArgs,
     /// Directory to write into. Default: out/sweep/SCENE.
     #[arg(long)]
     pub(crate) out: Option<PathBuf>,
@@ -169,6 +185,8 @@ pub(crate) struct TemporalArgs {
     pub(crate) techniques: Vec<String>,
     #[command(flatten)]
     pub(crate) view: StudyView,
+    #[command(flatten)]
+    pub(crate) memory: MemoryArgs,
     /// Directory to write into. Default: out/temporal/SCENE.
     #[arg(long)]
     pub(crate) out: Option<PathBuf>,
@@ -202,6 +220,8 @@ pub(crate) struct CompareArgs {
     /// The focus body B of every map.
     #[arg(long, value_parser = FocusPolicy::parse, default_value = "light", help = FOCUS_HELP)]
     pub(crate) focus: FocusPolicy,
+    #[command(flatten)]
+    pub(crate) memory: MemoryArgs,
     /// The PNG to write.
     #[arg(long, default_value = "out/compare.png")]
     pub(crate) out: PathBuf,
@@ -290,6 +310,8 @@ pub(crate) struct RenderArgs {
     /// The scene and its shadows.
     #[command(flatten)]
     pub(crate) shadow: ShadowArgs,
+    #[command(flatten)]
+    pub(crate) memory: MemoryArgs,
     /// Directory to write into (created if missing). Default: out/render/SCENE-TECHNIQUE.
     #[arg(long)]
     pub(crate) out: Option<PathBuf>,
@@ -331,6 +353,8 @@ pub(crate) struct RenderMeshArgs {
     /// back), for pixel comparisons with other renderers (e.g. the peer harness's --dump).
     #[arg(long)]
     pub(crate) npy: bool,
+    #[command(flatten)]
+    pub(crate) memory: MemoryArgs,
     /// Directory to write into (created if missing): MESH-light.{png,exr}, MESH-eye.{png,exr}.
     #[arg(long, default_value = "out/render-mesh")]
     pub(crate) out: PathBuf,

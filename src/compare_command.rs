@@ -9,6 +9,7 @@ use tiny_skia::{Color, Pixmap, PixmapPaint, Transform};
 
 use crate::args::CompareArgs;
 use crate::error::CliError;
+use crate::memory::{self, Workload};
 use crate::output::{OutputFile, png_bound, print_line};
 use crate::shadow_settings::{load_scene_argument, optimizer_flags, technique_list};
 
@@ -45,6 +46,17 @@ pub(crate) fn run(args: &CompareArgs) -> Result<(), CliError> {
         args.out.clone(),
         "--out",
         png_bound(canvas.width(), canvas.height(), 4),
+    )?;
+    memory::check(
+        &Workload::of(
+            &scene,
+            false,
+            args.resolution,
+            1,
+            "camera.image",
+            "--resolution",
+        ),
+        args.memory.memory_budget,
     )?;
     canvas.fill(Color::WHITE);
     for (k, technique) in techniques.iter().enumerate() {

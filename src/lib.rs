@@ -14,6 +14,7 @@ mod compare_command;
 mod curves_command;
 mod error;
 mod inspect_command;
+mod memory;
 mod output;
 mod params_command;
 mod render_command;

@@ -7,6 +7,7 @@ use shadowlab_shadow::{FrameOptions, render_frame, scene_eye, view};
 
 use crate::args::RenderArgs;
 use crate::error::CliError;
+use crate::memory::{self, Workload};
 use crate::output::{OutputDir, png_bound, print_line, slug};
 use crate::shadow_settings::resolve;
 
@@ -32,6 +33,17 @@ pub(crate) fn run(args: &RenderArgs) -> Result<(), CliError> {
     let estimate = png_bound(scene.camera.width, scene.camera.height, 3)
         + maps.saturating_mul(png_bound(resolved.resolution, resolved.resolution, 2 + 3));
     let out = OutputDir::check(target, "--out", estimate)?;
+    memory::check(
+        &Workload::of(
+            scene,
+            false,
+            resolved.resolution,
+            maps,
+            "camera.image",
+            "--resolution, --splits",
+        ),
+        args.memory.memory_budget,
+    )?;
     let frame = render_frame(scene, &options)
         .map_err(|e| CliError::Input(format!("{} with {technique}: {e}", scene.name)))?;
     let image_failure =

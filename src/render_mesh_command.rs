@@ -8,6 +8,7 @@ use shadowlab_scene::benchmark::BenchmarkView;
 
 use crate::args::RenderMeshArgs;
 use crate::error::CliError;
+use crate::memory::{self, Workload};
 use crate::output::{OutputDir, png_bound, print_line, slug};
 
 pub(crate) fn run(args: &RenderMeshArgs) -> Result<(), CliError> {
@@ -17,6 +18,18 @@ pub(crate) fn run(args: &RenderMeshArgs) -> Result<(), CliError> {
         png_bound(args.size, args.size, 4 + 4 + 2) + png_bound(eye_width, eye_height, 4 + 4 + 2);
     let out = OutputDir::check(args.out.clone(), "--out", estimate)?;
     let mesh = shadowlab_scene::load_obj(&args.mesh).map_err(|e| CliError::Input(e.to_string()))?;
+    memory::check(
+        &Workload {
+            triangles: mesh.triangles().len() as u64,
+            eye: (eye_width, eye_height),
+            study: false,
+            resolution: args.size,
+            maps: 1,
+            eye_source: "--eye-size",
+            map_source: "--size",
+        },
+        args.memory.memory_budget,
+    )?;
     let view = BenchmarkView::new(&mesh.bounds(), eye_width, eye_height);
     let mut positions = mesh.positions().to_vec();
     let (mut light, mut eye) = (view.light, view.eye);
