@@ -75,6 +75,7 @@ pub(crate) fn analyze(args: &AnalyzeArgs) -> Result<(), CliError> {
             .min_by_key(|r| r.abs_diff(1024)),
         optimal: optimizer_flags(&args.optimizer)?,
         focus: args.focus,
+        timing_runs: args.timing_runs,
     };
     // Two pictures per technique at the picture resolution.
     let estimate = TEXT_BOUND
@@ -136,13 +137,14 @@ pub(crate) fn analyze(args: &AnalyzeArgs) -> Result<(), CliError> {
     for m in report::pareto_front(&study) {
         let o = m.outcome.as_ref().expect("defined");
         print_line(&format!(
-            "{:<24} {:>5}² {} map(s) {:<10} {:>8} misclassified  {:>8.1} ms",
+            "{:<24} {:>5}² {} map(s) {:<10} {:>8} misclassified  {:>8.1} ms ± {:.1}",
             technique_label(m.setting.technique),
             m.setting.resolution,
             m.setting.partitions,
             filter_label(&m.setting.filter),
             o.errors.total(),
-            o.time().as_secs_f64() * 1e3
+            o.time().as_secs_f64() * 1e3,
+            o.time_spread.as_secs_f64() * 1e3
         ))?;
     }
     print_line(&out.path().join("report.md").display().to_string())

@@ -9,6 +9,9 @@ use shadowlab_shadow::optimal::{BORDER, INITIAL_MAP_RESOLUTION, ITERATIONS, READ
 
 use crate::memory::Bytes;
 
+/// The most timing runs per combination `analyze` takes.
+const MAX_TIMING_RUNS: u64 = 100;
+
 /// shadowlab: what a shadow-map technique costs and what it buys, with numbers.
 #[derive(Debug, Parser)]
 #[command(name = "shadowlab", version, about, long_about = None)]
@@ -91,6 +94,10 @@ pub(crate) struct AnalyzeArgs {
     /// The scene-optimized map's settings.
     #[command(flatten)]
     pub(crate) optimizer: OptimizerArgs,
+    /// How many times each combination's shadows are made to time it: its time is the median
+    /// run's, ± half the range (the Pareto front counts a combination dominated only beyond that).
+    #[arg(long, value_name = "N", default_value_t = shadowlab_analysis::study::DEFAULT_TIMING_RUNS, value_parser = clap::builder::RangedU64ValueParser::<usize>::new().range(1..=MAX_TIMING_RUNS))]
+    pub(crate) timing_runs: usize,
     #[command(flatten)]
     pub(crate) memory: MemoryArgs,
     /// Directory to write into. Default: out/analyze/SCENE.

@@ -36,6 +36,8 @@ fn default_options() -> StudyOptions {
         pictures_at: None,
         optimal: shadowlab_shadow::optimal::OptimalOptions::default(),
         focus: shadowlab_shadow::FocusPolicy::Light,
+        // The benchmark times the whole study; one run per combination, as a user's quick run.
+        timing_runs: 1,
     }
 }
 

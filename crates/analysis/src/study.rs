@@ -8,7 +8,7 @@ use shadowlab_scene::Scene;
 use shadowlab_shadow::optimal::OptimalOptions;
 use shadowlab_shadow::{
     Bias, Filter, FocusPolicy, FrameOptions, Lookup, PlanOptions, ShadowError, Shadows, Splits,
-    Technique, eye_pass, render_shadows, scene_eye, serving,
+    Technique, Timings, eye_pass, render_shadows, scene_eye, serving,
 };
 use shadowlab_trace::Bvh;
 
@@ -48,7 +48,14 @@ pub struct StudyOptions {
     pub optimal: OptimalOptions,
     /// The body B every map is fitted to.
     pub focus: FocusPolicy,
+    /// How many times each combination's shadows are made for its timing (≥ 1; 1 for anything
+    /// but a timing): its time is the run of median total time, its spread half the range of the
+    /// totals ([`Outcome::time_spread`]). The results other than timings are the first run's.
+    pub timing_runs: usize,
 }
+
+/// The timing runs per combination of `analyze` by default: the fewest that have a median.
+pub const DEFAULT_TIMING_RUNS: usize = 3;
 
 /// The pictures of one combination: rows from the bottom, like the eye image.
 #[derive(Clone, Debug, PartialEq)]
@@ -97,6 +104,10 @@ pub struct Outcome {
     pub shadow_pass: Duration,
     /// Lookup time.
     pub lookup: Duration,
+    /// Half the range of the total times over the timing runs ([`StudyOptions::timing_runs`]):
+    /// the planning, shadow-pass and lookup times are the median run's, and a time is known to
+    /// within ± this. Zero for one run.
+    pub time_spread: Duration,
 }
 
 impl Outcome {
@@ -112,6 +123,8 @@ impl Outcome {
 pub struct Study {
     /// The scene's name.
     pub scene: String,
+    /// The timing runs of each combination ([`StudyOptions::timing_runs`]).
+    pub timing_runs: usize,
     /// Eye image size.
     pub width: u32,
     /// Eye image height.
@@ -252,7 +265,24 @@ fn outcome(truth: &Truth, shadows: &Shadows, per_pixel: &[Option<Footprint>]) ->
         planning: shadows.timings.planning,
         shadow_pass: shadows.timings.shadow_pass,
         lookup: shadows.timings.lookup,
+        time_spread: Duration::ZERO,
     }
+}
+
+/// Sets `outcome`'s times from `runs` timings of its shadows (the first is the outcome's own): the
+/// run of median total time (the lower median for an even count) and half the totals' range.
+fn time_from_runs(outcome: &mut Outcome, runs: &[Timings]) {
+    let total = |t: &Timings| t.planning + t.shadow_pass + t.lookup;
+    let mut sorted: Vec<&Timings> = runs.iter().collect();
+    sorted.sort_by_key(|t| total(t));
+    let (Some(fastest), Some(slowest)) = (sorted.first(), sorted.last()) else {
+        return;
+    };
+    let median = sorted[(sorted.len() - 1) / 2];
+    outcome.planning = median.planning;
+    outcome.shadow_pass = median.shadow_pass;
+    outcome.lookup = median.lookup;
+    outcome.time_spread = (total(slowest) - total(fastest)) / 2;
 }
 
 /// Runs the study, calling `progress(done, total)` after each combination.
@@ -299,7 +329,13 @@ pub fn run(
                         difference: difference_image(&truth, &shadows.lit, &eye.image),
                     });
                 }
-                Ok(outcome(&truth, &shadows, &per_pixel))
+                let mut measured = outcome(&truth, &shadows, &per_pixel);
+                let mut runs = vec![shadows.timings];
+                for _ in 1..options.timing_runs {
+                    runs.push(render(scene, options, setting, &eye, &bvh)?.timings);
+                }
+                time_from_runs(&mut measured, &runs);
+                Ok(measured)
             }
             Err(ShadowError::NotDefined { reason, .. }) => Err(reason),
             Err(e) => return Err(e.into()),
@@ -318,6 +354,7 @@ pub fn run(
         .count();
     Ok(Study {
         scene: scene.name.clone(),
+        timing_runs: options.timing_runs.max(1),
         width: scene.camera.width,
         height: scene.camera.height,
         visible: visible as u64,
@@ -328,4 +365,71 @@ pub fn run(
         pictures,
         view_axis,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn ms(n: u64) -> Duration {
+        Duration::from_millis(n)
+    }
+
+    fn timings(planning: u64, shadow_pass: u64, lookup: u64) -> Timings {
+        Timings {
+            eye_pass: Duration::ZERO,
+            planning: ms(planning),
+            shadow_pass: ms(shadow_pass),
+            lookup: ms(lookup),
+        }
+    }
+
+    fn outcome_of(errors: u64, runs: &[Timings]) -> Outcome {
+        let stats = AliasingStats {
+            max: 0.0,
+            p99: 0.0,
+            mean: 0.0,
+            count: 0,
+        };
+        let mut o = Outcome {
+            errors: Misclassification {
+                visible: 100,
+                falsely_lit: errors,
+                falsely_shadowed: 0,
+            },
+            footprint: [stats; 3],
+            planning: Duration::ZERO,
+            shadow_pass: Duration::ZERO,
+            lookup: Duration::ZERO,
+            time_spread: Duration::ZERO,
+        };
+        time_from_runs(&mut o, runs);
+        o
+    }
+
+    #[test]
+    fn a_time_is_the_median_runs_phases_and_half_the_range() {
+        let o = outcome_of(0, &[timings(1, 10, 9), timings(2, 30, 8), timings(1, 5, 4)]);
+        // Totals 20, 40, 10: the median run is the first; the range 30.
+        assert_eq!(
+            (o.planning, o.shadow_pass, o.lookup),
+            (ms(1), ms(10), ms(9))
+        );
+        assert_eq!(o.time_spread, ms(15));
+        let one = outcome_of(0, &[timings(1, 2, 3)]);
+        assert_eq!((one.time(), one.time_spread), (ms(6), Duration::ZERO));
+    }
+
+    #[test]
+    fn a_combination_is_dominated_only_beyond_the_spread() {
+        let fast = outcome_of(10, &[timings(0, 100, 0), timings(0, 110, 0)]);
+        // Slower by 4 ms, within the spreads (5 + 0): not dominated.
+        let close = outcome_of(20, &[timings(0, 104, 0)]);
+        // Slower by 20 ms, beyond them: dominated.
+        let slow = outcome_of(20, &[timings(0, 120, 0)]);
+        assert!(!crate::report::dominates(&fast, &close));
+        assert!(crate::report::dominates(&fast, &slow));
+        // Fewer errors are never dominated by more, however fast.
+        assert!(!crate::report::dominates(&slow, &fast));
+    }
 }

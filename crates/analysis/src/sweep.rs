@@ -94,6 +94,8 @@ pub fn sweep(
         pictures_at: None,
         optimal: shadowlab_shadow::optimal::OptimalOptions::default(),
         focus: shadowlab_shadow::FocusPolicy::Light,
+        // Sweeps report errors and footprints, no times.
+        timing_runs: 1,
     };
     let mut points = Vec::new();
     let total = angles.len() * techniques.len();
