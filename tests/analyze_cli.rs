@@ -221,6 +221,33 @@ fn sweep_angle_reaches_gamma_zero_continuously() {
     }
 }
 
+/// A long walk stays in the scene (a straight walk of ~600 frames left the outdoor scene and the
+/// run failed at its end).
+#[test]
+fn a_long_temporal_walk_stays_in_the_scene() {
+    let out = tempfile::tempdir().unwrap();
+    let output = shadowlab(
+        &[
+            "temporal",
+            "--frames",
+            "640",
+            "--techniques",
+            "uniform",
+            "--resolution",
+            "32",
+            "--eye-size",
+            "32x24",
+            "--out",
+            out.path().to_str().unwrap(),
+        ],
+        None,
+    );
+    assert!(output.status.success(), "{}", stderr(&output));
+    let csv = fs::read_to_string(out.path().join("temporal.csv")).unwrap();
+    // A row per frame pair, snapping off and on.
+    assert_eq!(csv.lines().count(), 1 + 2 * 639);
+}
+
 #[test]
 fn temporal_counts_shimmer_with_and_without_snapping() {
     let scenes = tempfile::tempdir().unwrap();

@@ -19,9 +19,26 @@ use crate::truth::exact_truth;
 pub const STEP_FRACTION: f64 = 0.002;
 /// How far it turns per frame (yaw about +y), radians.
 pub const TURN_PER_FRAME: f64 = 0.1 * std::f64::consts::PI / 180.0;
+/// Frames of the walk out before it turns back: the camera goes out over `WALK_OUT_FRAMES` steps
+/// (half the scene's radius, 25°) and back the same way, and again, so a walk of any
+/// length stays where the first `WALK_OUT_FRAMES` frames went (a straight walk of 600 frames left
+/// the outdoor scene). Walks of at most this many frames are straight.
+pub const WALK_OUT_FRAMES: usize = 250;
 
-/// The camera pose of frame `k`: the scene's camera walked `k` steps along its horizontal view
-/// direction and turned `k` times by [`TURN_PER_FRAME`].
+/// The walk's position at frame `k`, in steps: `k` up to [`WALK_OUT_FRAMES`], then back down to
+/// 0 and out again (a triangle wave of period 2·[`WALK_OUT_FRAMES`]).
+#[must_use]
+pub fn walk_steps(k: usize) -> usize {
+    let phase = k % (2 * WALK_OUT_FRAMES);
+    if phase <= WALK_OUT_FRAMES {
+        phase
+    } else {
+        2 * WALK_OUT_FRAMES - phase
+    }
+}
+
+/// The camera pose of frame `k`: the scene's camera walked [`walk_steps`]`(k)` steps along its
+/// horizontal view direction and turned as many times by [`TURN_PER_FRAME`].
 ///
 /// # Errors
 /// If the turned pose is degenerate (a camera looking straight up or down cannot walk
@@ -37,8 +54,8 @@ pub fn pose_at(scene: &Scene, k: usize) -> Result<ViewPose, AnalysisError> {
     } else {
         v
     };
-    #[expect(clippy::cast_precision_loss, reason = "a frame index")]
-    let k = k as f64;
+    #[expect(clippy::cast_precision_loss, reason = "a step count")]
+    let k = walk_steps(k) as f64;
     let turn = DQuat::from_rotation_y(TURN_PER_FRAME * k);
     let eye = pose.eye() + walk * (STEP_FRACTION * radius * k);
     Ok(ViewPose::look_to(eye, turn * v, turn * pose.up())
@@ -146,7 +163,7 @@ pub fn write(scene: &str, stability: &[Stability]) -> Vec<(String, Vec<u8>)> {
     let label = crate::report::technique_label;
     let mut csv = String::from("scene,technique,snap_texels,frame,shimmering_pixels\n");
     let mut md = format!(
-        "# Temporal stability: `{scene}`\n\nThe camera walks {STEP_FRACTION} of the scene's radius and turns 0.1° per frame. A pixel shimmers when its shadow state flips between consecutive frames while the exact truth there does not.\n\n| technique | snapping | mean shimmering pixels per frame | largest |\n|---|---|---:|---:|\n"
+        "# Temporal stability: `{scene}`\n\nThe camera walks {STEP_FRACTION} of the scene's radius and turns 0.1° per frame, and walks back the same way after {WALK_OUT_FRAMES} frames. A pixel shimmers when its shadow state flips between consecutive frames while the exact truth there does not.\n\n| technique | snapping | mean shimmering pixels per frame | largest |\n|---|---|---:|---:|\n"
     );
     for s in stability {
         let snapping = if s.snap_texels == 0 {
@@ -190,4 +207,26 @@ pub fn write(scene: &str, stability: &[Stability]) -> Vec<(String, Vec<u8>)> {
         ("temporal.csv".into(), csv.into_bytes()),
         ("temporal.md".into(), md.into_bytes()),
     ]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_walk_turns_back_and_repeats() {
+        assert_eq!(walk_steps(0), 0);
+        assert_eq!(walk_steps(WALK_OUT_FRAMES), WALK_OUT_FRAMES);
+        assert_eq!(walk_steps(WALK_OUT_FRAMES + 1), WALK_OUT_FRAMES - 1);
+        assert_eq!(walk_steps(2 * WALK_OUT_FRAMES), 0);
+        let scene = shadowlab_scene::builtin_scene("outdoor").unwrap();
+        for k in [0, 1, 17, WALK_OUT_FRAMES] {
+            let pose = pose_at(&scene, k).unwrap();
+            let again = pose_at(&scene, k + 2 * WALK_OUT_FRAMES).unwrap();
+            assert_eq!(pose.eye(), again.eye());
+            assert_eq!(pose.forward(), again.forward());
+        }
+        let steps = (0..10_000).map(walk_steps).max();
+        assert_eq!(steps, Some(WALK_OUT_FRAMES));
+    }
 }
