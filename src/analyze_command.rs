@@ -17,6 +17,9 @@ use crate::shadow_settings::{
     load_scene_argument, optimizer_flags, parse_techniques, technique_list,
 };
 
+/// How often a progress bar redraws its elapsed time while a step runs.
+const PROGRESS_TICK: std::time::Duration = std::time::Duration::from_millis(250);
+
 /// A progress bar on standard error, drawn only when it is a terminal.
 fn progress_bar(what: &str) -> ProgressBar {
     let bar = ProgressBar::new(0);
@@ -26,6 +29,9 @@ fn progress_bar(what: &str) -> ProgressBar {
             .progress_chars("=> "),
     );
     bar.set_message(what.to_string());
+    // It ticks on its own, so a long step (a wide filter at a high resolution) shows its elapsed
+    // time.
+    bar.enable_steady_tick(PROGRESS_TICK);
     bar
 }
 
@@ -102,9 +108,19 @@ pub(crate) fn analyze(args: &AnalyzeArgs) -> Result<(), CliError> {
         args.memory.memory_budget,
     )?;
     let bar = progress_bar("analyze");
-    let result = study::run(&scene, &options, |done, total| {
+    // The bar names the combination being measured.
+    let result = study::run(&scene, &options, |done, total, next| {
         bar.set_length(total as u64);
         bar.set_position(done as u64);
+        if let Some(setting) = next {
+            bar.set_message(format!(
+                "analyze: {} {}² {} map(s) {}",
+                technique_label(setting.technique),
+                setting.resolution,
+                setting.partitions,
+                filter_label(&setting.filter)
+            ));
+        }
     });
     bar.finish_and_clear();
     let study = result.map_err(|e| CliError::Input(format!("{}: {e}", scene.name)))?;

@@ -49,7 +49,7 @@ fn whole_study(c: &mut Criterion) {
     group.warm_up_time(Duration::from_secs(1));
     group.measurement_time(Duration::from_secs(60));
     group.bench_function("outdoor/default", |b| {
-        b.iter(|| study::run(black_box(&scene), &options, |_, _| {}).expect("the study"));
+        b.iter(|| study::run(black_box(&scene), &options, |_, _, _| {}).expect("the study"));
     });
 
     let eye = EyePass::new(&scene).expect("the eye pass");

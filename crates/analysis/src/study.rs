@@ -285,7 +285,8 @@ fn time_from_runs(outcome: &mut Outcome, runs: &[Timings]) {
     outcome.time_spread = (total(slowest) - total(fastest)) / 2;
 }
 
-/// Runs the study, calling `progress(done, total)` after each combination.
+/// Runs the study, calling `progress(done, total, next)` before each combination (`next`, the one
+/// about to be measured) and once at the end (`None`).
 ///
 /// # Errors
 /// The truth's errors (bad scene geometry); combinations whose technique is not defined for the
@@ -293,7 +294,7 @@ fn time_from_runs(outcome: &mut Outcome, runs: &[Timings]) {
 pub fn run(
     scene: &Scene,
     options: &StudyOptions,
-    mut progress: impl FnMut(usize, usize),
+    mut progress: impl FnMut(usize, usize, Option<&Setting>),
 ) -> Result<Study, AnalysisError> {
     let start = Instant::now();
     let eye = EyePass::new(scene)?;
@@ -313,6 +314,7 @@ pub fn run(
     let mut measurements = Vec::with_capacity(all.len());
     let mut pictures = Vec::new();
     for (k, setting) in all.iter().enumerate() {
+        progress(k, all.len(), Some(setting));
         let outcome = match render(scene, options, setting, &eye, &bvh) {
             Ok(shadows) => {
                 let per_pixel = frame_footprints(scene, &eye.image, &shadows);
@@ -344,8 +346,8 @@ pub fn run(
             setting: setting.clone(),
             outcome,
         });
-        progress(k + 1, all.len());
     }
+    progress(all.len(), all.len(), None);
     let visible = eye
         .image
         .triangle
