@@ -389,6 +389,16 @@ pub fn pareto_front(study: &Study) -> Vec<&Measurement> {
     front.into_iter().map(|(m, _)| m).collect()
 }
 
+/// `text` as one CSV field (RFC 4180): quoted, with quotes doubled, when it holds a comma, a quote
+/// or a line break — a scene's name comes from its file and may hold any of them.
+pub(crate) fn csv_field(text: &str) -> std::borrow::Cow<'_, str> {
+    if text.contains([',', '"', '\n', '\r']) {
+        format!("\"{}\"", text.replace('"', "\"\"")).into()
+    } else {
+        text.into()
+    }
+}
+
 fn stats_columns(s: &AliasingStats) -> [f64; 3] {
     [s.max, s.p99, s.mean]
 }
@@ -405,7 +415,7 @@ fn csv(study: &Study) -> Result<String, AnalysisError> {
         let s = &m.setting;
         let prefix = format!(
             "{},{},{},{},{}",
-            study.scene,
+            csv_field(&study.scene),
             technique_label(s.technique),
             s.resolution,
             s.partitions,
@@ -683,5 +693,17 @@ fn view_axis_figure(study: &Study) -> Figure {
         columns: 3,
         panel_width: 520,
         panel_height: 380,
+    }
+}
+
+#[cfg(test)]
+mod csv_tests {
+    use super::csv_field;
+
+    #[test]
+    fn names_with_separators_are_quoted() {
+        assert_eq!(csv_field("outdoor"), "outdoor");
+        assert_eq!(csv_field("a,b"), "\"a,b\"");
+        assert_eq!(csv_field("say \"hi\"\n"), "\"say \"\"hi\"\"\n\"");
     }
 }

@@ -141,6 +141,7 @@ pub fn sweep(
 pub fn write(scene: &str, points: &[SweepPoint]) -> Result<Vec<(String, Vec<u8>)>, AnalysisError> {
     use std::fmt::Write as _;
     let label = crate::report::technique_label;
+    let scene_field = crate::report::csv_field(scene);
     let mut csv = String::from(
         "scene,technique,gamma_rad,gamma_deg,defined,misclassified,falsely_lit,falsely_shadowed,footprint_p99\n",
     );
@@ -148,7 +149,7 @@ pub fn write(scene: &str, points: &[SweepPoint]) -> Result<Vec<(String, Vec<u8>)
         match &p.outcome {
             Ok((e, p99)) => writeln!(
                 csv,
-                "{scene},{},{:?},{:?},true,{},{},{},{:?}",
+                "{scene_field},{},{:?},{:?},true,{},{},{},{:?}",
                 label(p.technique),
                 p.gamma,
                 p.gamma.to_degrees(),
@@ -159,7 +160,7 @@ pub fn write(scene: &str, points: &[SweepPoint]) -> Result<Vec<(String, Vec<u8>)
             ),
             Err(_) => writeln!(
                 csv,
-                "{scene},{},{:?},{:?},false,,,,",
+                "{scene_field},{},{:?},{:?},false,,,,",
                 label(p.technique),
                 p.gamma,
                 p.gamma.to_degrees()

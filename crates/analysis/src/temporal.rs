@@ -161,6 +161,7 @@ fn shimmer(
 pub fn write(scene: &str, stability: &[Stability]) -> Vec<(String, Vec<u8>)> {
     use std::fmt::Write as _;
     let label = crate::report::technique_label;
+    let scene_field = crate::report::csv_field(scene);
     let mut csv = String::from("scene,technique,snap_texels,frame,shimmering_pixels\n");
     let mut md = format!(
         "# Temporal stability: `{scene}`\n\nThe camera walks {STEP_FRACTION} of the scene's radius and turns 0.1° per frame, and walks back the same way after {WALK_OUT_FRAMES} frames. A pixel shimmers when its shadow state flips between consecutive frames while the exact truth there does not.\n\n| technique | snapping | mean shimmering pixels per frame | largest |\n|---|---|---:|---:|\n"
@@ -176,7 +177,7 @@ pub fn write(scene: &str, stability: &[Stability]) -> Vec<(String, Vec<u8>)> {
                 for (k, c) in counts.iter().enumerate() {
                     writeln!(
                         csv,
-                        "{scene},{},{},{},{c}",
+                        "{scene_field},{},{},{},{c}",
                         label(s.technique),
                         s.snap_texels,
                         k + 1
