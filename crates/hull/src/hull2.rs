@@ -9,7 +9,7 @@ use glam::DVec2;
 use robust::{Coord, orient2d};
 
 use crate::error::{Degeneracy, HullError, ValidationError};
-use crate::finite::power_of_two_inverse;
+use crate::finite::{flush_tiny, power_of_two_inverse};
 use crate::tolerance::{Scale, Tolerances};
 
 /// The convex hull of a 2-D point set: a point, a segment, or a polygon with an interior.
@@ -33,12 +33,13 @@ pub struct ConvexPolygon2 {
     vertices: Vec<DVec2>,
 }
 
-/// Exact orientation of `c` relative to the directed line `a → b` (positive = left), on points
-/// already scaled by `factor` (a power of two).
+/// Exact orientation of `c` relative to the directed line `a → b` (positive = left), on the points
+/// scaled by `factor` (a power of two) with coordinates below
+/// [`crate::finite::ORIENTATION_FLOOR`] flushed to 0.
 fn orient(a: DVec2, b: DVec2, c: DVec2, factor: f64) -> f64 {
     let coord = |p: DVec2| Coord {
-        x: p.x * factor,
-        y: p.y * factor,
+        x: flush_tiny(p.x * factor),
+        y: flush_tiny(p.y * factor),
     };
     orient2d(coord(a), coord(b), coord(c))
 }

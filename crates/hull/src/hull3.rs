@@ -24,7 +24,7 @@ use glam::DVec3;
 use robust::{Coord3D, orient3d};
 
 use crate::error::{Degeneracy, HullError};
-use crate::finite::power_of_two_inverse;
+use crate::finite::{flush_tiny, power_of_two_inverse};
 use crate::plane::Plane;
 use crate::polyhedron::{ConvexPolyhedron, Face};
 use crate::tolerance::{Scale, Tolerances};
@@ -78,9 +78,9 @@ pub(crate) fn hull_with_snap(
     let scaled: Vec<Coord3D<f64>> = p
         .iter()
         .map(|v| Coord3D {
-            x: v.x * factor,
-            y: v.y * factor,
-            z: v.z * factor,
+            x: flush_tiny(v.x * factor),
+            y: flush_tiny(v.y * factor),
+            z: flush_tiny(v.z * factor),
         })
         .collect();
     let Some(simplex) = initial_simplex(&p, snap) else {
@@ -446,12 +446,25 @@ impl Quickhull {
     }
 }
 
-/// The plane of a planar loop by Newell's method about its centroid (accurate for long thin loops).
+/// The plane of a planar loop by Newell's method about its centroid (accurate for long thin loops),
+/// the offsets from the centroid rescaled by a power of two first so that the area vector of a tiny
+/// face neither underflows nor loses its direction (found by the hull fuzzer: coordinates near
+/// 1e-300 gave a zero area vector).
 fn newell_plane(vertices: &[DVec3], loop_: &[usize]) -> Plane {
     let n = loop_.len();
     let center = loop_.iter().map(|&i| vertices[i]).sum::<DVec3>() / n as f64;
+    let offsets: Vec<DVec3> = loop_.iter().map(|&i| vertices[i] - center).collect();
+    let largest = offsets
+        .iter()
+        .map(|d| d.abs().max_element())
+        .fold(0.0_f64, f64::max);
+    let factor = if largest > 0.0 {
+        power_of_two_inverse(largest)
+    } else {
+        1.0
+    };
     let area: DVec3 = (0..n)
-        .map(|k| (vertices[loop_[k]] - center).cross(vertices[loop_[(k + 1) % n]] - center))
+        .map(|k| (offsets[k] * factor).cross(offsets[(k + 1) % n] * factor))
         .sum();
     let normal = area.normalize();
     debug_assert!(normal.is_finite(), "a hull face has a positive area");

@@ -47,9 +47,11 @@ impl DepthFormat {
         }
     }
 
-    /// The key of window depth `z` (clamped to `[0, 1]`).
+    /// The key of window depth `z` (clamped to `[0, 1]`; a NaN is the far plane, 1, in every
+    /// format — the formats' own conversions would disagree on it).
     #[must_use]
     pub fn encode(self, z: f64) -> u32 {
+        let z = if z.is_nan() { 1.0 } else { z };
         match self {
             Self::F32 => F32Key::encode(z),
             Self::ReversedF32 => ReversedF32Key::encode(z),
@@ -190,6 +192,16 @@ impl DepthCompare {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Found by the raster fuzzer: clearing to NaN stored NaN in reversed-f32 (a depth outside
+    /// [0, 1]), 1 in f32 and 0 in the unorm formats.
+    #[test]
+    fn nan_is_the_far_plane_in_every_format() {
+        for format in DepthFormat::ALL {
+            assert_eq!(format.decode(format.encode(f64::NAN)), 1.0, "{format:?}");
+            assert_eq!(format.decode(format.encode(-f64::NAN)), 1.0, "{format:?}");
+        }
+    }
 
     /// Rounding then clamping the bits gives what clamping then rounding gives, for depths in and
     /// around [0, 1], at the boundaries, tiny, huge and infinite.

@@ -242,8 +242,8 @@ impl DepthTarget {
         })
     }
 
-    /// Sets every pixel to window depth `depth` (clamped to `[0, 1]`). Takes no time: the next
-    /// draw fills each tile as it draws it.
+    /// Sets every pixel to window depth `depth` (clamped to `[0, 1]`; NaN: the far plane). Takes no
+    /// time: the next draw fills each tile as it draws it.
     pub fn clear(&mut self, depth: f64) {
         self.keys.clear(self.format.encode(depth));
     }
