@@ -2,7 +2,6 @@
 
 use std::path::PathBuf;
 
-use indicatif::{ProgressBar, ProgressStyle};
 use shadowlab_analysis::report::{filter_label, technique_label};
 use shadowlab_analysis::{report, study, sweep, temporal};
 use shadowlab_raster::{DepthFormat, image_out};
@@ -13,27 +12,10 @@ use crate::args::{AnalyzeArgs, StudyView, SweepArgs, TemporalArgs};
 use crate::error::CliError;
 use crate::memory::{self, Workload};
 use crate::output::{OutputDir, TEXT_BOUND, png_bound, print_line, slug};
+use crate::progress;
 use crate::shadow_settings::{
     load_scene_argument, optimizer_flags, parse_techniques, technique_list,
 };
-
-/// How often a progress bar redraws its elapsed time while a step runs.
-const PROGRESS_TICK: std::time::Duration = std::time::Duration::from_millis(250);
-
-/// A progress bar on standard error, drawn only when it is a terminal.
-fn progress_bar(what: &str) -> ProgressBar {
-    let bar = ProgressBar::new(0);
-    bar.set_style(
-        ProgressStyle::with_template("{msg} [{bar:30}] {pos}/{len} {elapsed}")
-            .expect("a valid template")
-            .progress_chars("=> "),
-    );
-    bar.set_message(what.to_string());
-    // It ticks on its own, so a long step (a wide filter at a high resolution) shows its elapsed
-    // time.
-    bar.enable_steady_tick(PROGRESS_TICK);
-    bar
-}
 
 /// The output set of a study command: `--out`, or `out/<command>/<scene>` with the scene's name
 /// made safe as a path component; checked before any work.
@@ -107,7 +89,7 @@ pub(crate) fn analyze(args: &AnalyzeArgs) -> Result<(), CliError> {
         ),
         args.memory.memory_budget,
     )?;
-    let bar = progress_bar("analyze");
+    let bar = progress::bar("analyze");
     // The bar names the combination being measured.
     let result = study::run(&scene, &options, |done, total, next| {
         bar.set_length(total as u64);
@@ -196,7 +178,7 @@ pub(crate) fn sweep_angle(args: &SweepArgs) -> Result<(), CliError> {
         ),
         args.memory.memory_budget,
     )?;
-    let bar = progress_bar("sweep");
+    let bar = progress::bar("sweep");
     let result = sweep::sweep(
         &scene,
         &techniques,
@@ -234,7 +216,7 @@ pub(crate) fn temporal(args: &TemporalArgs) -> Result<(), CliError> {
         ),
         args.memory.memory_budget,
     )?;
-    let bar = progress_bar("temporal");
+    let bar = progress::bar("temporal");
     let result = temporal::temporal(
         &scene,
         &techniques,

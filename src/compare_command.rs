@@ -11,6 +11,7 @@ use crate::args::CompareArgs;
 use crate::error::CliError;
 use crate::memory::{self, Workload};
 use crate::output::{OutputFile, png_bound, print_line};
+use crate::progress;
 use crate::shadow_settings::{load_scene_argument, optimizer_flags, technique_list};
 
 /// Height of a picture's label, in pixels.
@@ -76,7 +77,10 @@ pub(crate) fn run(args: &CompareArgs) -> Result<(), CliError> {
             GAP + (k % columns) * (tile_w + GAP),
             GAP + (k / columns) * (tile_h + GAP),
         );
-        let label = match render_frame(&scene, &options) {
+        let spinner = progress::spinner(&format!("compare: {technique}"));
+        let frame = render_frame(&scene, &options);
+        spinner.finish_and_clear();
+        let label = match frame {
             Ok(frame) => {
                 let shaded = view::shade(&frame, &scene);
                 let mut tile = Pixmap::new(cw, ch).expect("a non-empty crop");

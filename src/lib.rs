@@ -17,6 +17,7 @@ mod inspect_command;
 mod memory;
 mod output;
 mod params_command;
+mod progress;
 mod render_command;
 mod render_mesh_command;
 mod shadow_settings;

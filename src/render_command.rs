@@ -9,6 +9,7 @@ use crate::args::RenderArgs;
 use crate::error::CliError;
 use crate::memory::{self, Workload};
 use crate::output::{OutputDir, png_bound, print_line, slug};
+use crate::progress;
 use crate::shadow_settings::resolve;
 
 pub(crate) fn run(args: &RenderArgs) -> Result<(), CliError> {
@@ -44,8 +45,11 @@ pub(crate) fn run(args: &RenderArgs) -> Result<(), CliError> {
         ),
         args.memory.memory_budget,
     )?;
-    let frame = render_frame(scene, &options)
-        .map_err(|e| CliError::Input(format!("{} with {technique}: {e}", scene.name)))?;
+    let spinner = progress::spinner(&format!("render: {technique} {}²", resolved.resolution));
+    let frame = render_frame(scene, &options);
+    spinner.finish_and_clear();
+    let frame =
+        frame.map_err(|e| CliError::Input(format!("{} with {technique}: {e}", scene.name)))?;
     let image_failure =
         |e: shadowlab_raster::RasterError| CliError::Failure(anyhow::anyhow!("{e}"));
     let mut files = vec![(
