@@ -8,7 +8,7 @@ use shadowlab_raster::{DepthFormat, image_out};
 use shadowlab_scene::Scene;
 use shadowlab_shadow::{Bias, Filter, Splits};
 
-use crate::args::{AnalyzeArgs, StudyView, SweepArgs, TemporalArgs};
+use crate::args::{AnalyzeArgs, MemoryArgs, StudyView, SweepArgs, TemporalArgs};
 use crate::error::CliError;
 use crate::memory::{self, Workload};
 use crate::output::{OutputDir, TEXT_BOUND, png_bound, print_line, slug};
@@ -157,6 +157,21 @@ fn study_scene(scene: Option<&str>, view: &StudyView) -> Result<Scene, CliError>
     Ok(scene)
 }
 
+/// The memory check of `sweep-angle` and `temporal`: one map at a time beside a study's eye buffers.
+fn study_memory(scene: &Scene, view: &StudyView, memory: &MemoryArgs) -> Result<(), CliError> {
+    memory::check(
+        &Workload::of(
+            scene,
+            true,
+            view.resolution,
+            1,
+            "--eye-size or camera.image",
+            "--resolution",
+        ),
+        memory.memory_budget,
+    )
+}
+
 pub(crate) fn sweep_angle(args: &SweepArgs) -> Result<(), CliError> {
     let scene = study_scene(args.scene.as_deref(), &args.view)?;
     let techniques = parse_techniques(&args.techniques, "--techniques")?;
@@ -167,17 +182,7 @@ pub(crate) fn sweep_angle(args: &SweepArgs) -> Result<(), CliError> {
     };
     let angles = sweep::default_angles();
     let out = output_dir(args.out.as_ref(), "sweep", &scene, TEXT_BOUND)?;
-    memory::check(
-        &Workload::of(
-            &scene,
-            true,
-            args.view.resolution,
-            1,
-            "--eye-size or camera.image",
-            "--resolution",
-        ),
-        args.memory.memory_budget,
-    )?;
+    study_memory(&scene, &args.view, &args.memory)?;
     let bar = progress::bar("sweep");
     let result = sweep::sweep(
         &scene,
@@ -205,17 +210,7 @@ pub(crate) fn temporal(args: &TemporalArgs) -> Result<(), CliError> {
     let scene = study_scene(args.scene.as_deref(), &args.view)?;
     let techniques = parse_techniques(&args.techniques, "--techniques")?;
     let out = output_dir(args.out.as_ref(), "temporal", &scene, TEXT_BOUND)?;
-    memory::check(
-        &Workload::of(
-            &scene,
-            true,
-            args.view.resolution,
-            1,
-            "--eye-size or camera.image",
-            "--resolution",
-        ),
-        args.memory.memory_budget,
-    )?;
+    study_memory(&scene, &args.view, &args.memory)?;
     let bar = progress::bar("temporal");
     let result = temporal::temporal(
         &scene,

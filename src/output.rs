@@ -232,13 +232,40 @@ impl Drop for Staged {
     }
 }
 
-/// A directory that receives an output set, checked before the work that fills it.
+/// Where an output goes: the path as the user gave it, its absolute form, its parent directory
+/// (where staging happens) and the flag that named it.
 #[derive(Debug)]
-pub(crate) struct OutputDir {
+struct Destination {
     target: PathBuf,
     absolute: PathBuf,
     parent: PathBuf,
     flag: &'static str,
+}
+
+impl Destination {
+    fn new(target: PathBuf, flag: &'static str) -> Result<Self, CliError> {
+        let (absolute, parent) = absolute_with_parent(&target, flag)?;
+        Ok(Self {
+            target,
+            absolute,
+            parent,
+            flag,
+        })
+    }
+
+    /// Creates the parent directory if needed and removes the orphans of killed runs in it.
+    fn open_parent(&self) -> Result<(), CliError> {
+        std::fs::create_dir_all(&self.parent)
+            .with_context(|| format!("cannot create directory {}", self.parent.display()))?;
+        clear_orphans(&self.parent);
+        Ok(())
+    }
+}
+
+/// A directory that receives an output set, checked before the work that fills it.
+#[derive(Debug)]
+pub(crate) struct OutputDir {
+    to: Destination,
 }
 
 impl OutputDir {
@@ -250,10 +277,11 @@ impl OutputDir {
         flag: &'static str,
         estimate: u64,
     ) -> Result<Self, CliError> {
-        let (absolute, parent) = absolute_with_parent(&target, flag)?;
-        match std::fs::symlink_metadata(&absolute) {
+        let to = Destination::new(target, flag)?;
+        let (target, absolute) = (&to.target, &to.absolute);
+        match std::fs::symlink_metadata(absolute) {
             Ok(meta) if meta.is_dir() => {
-                let replaceable = is_replaceable(&absolute)
+                let replaceable = is_replaceable(absolute)
                     .with_context(|| format!("cannot read {flag} {}", target.display()))?;
                 if !replaceable {
                     return Err(CliError::Input(format!(
@@ -279,35 +307,28 @@ impl OutputDir {
                 )));
             }
         }
-        check_location(&parent, flag, estimate)?;
-        Ok(Self {
-            target,
-            absolute,
-            parent,
-            flag,
-        })
+        check_location(&to.parent, flag, estimate)?;
+        Ok(Self { to })
     }
 
     /// The directory as the user gave it.
     pub(crate) fn path(&self) -> &Path {
-        &self.target
+        &self.to.target
     }
 
     /// Writes `files` (paths relative to the set, `/`-separated) and their manifest as one set,
     /// replacing whatever set was there before as a whole.
     pub(crate) fn write(&self, command: &str, files: &[(String, Vec<u8>)]) -> Result<(), CliError> {
-        std::fs::create_dir_all(&self.parent)
-            .with_context(|| format!("cannot create directory {}", self.parent.display()))?;
-        clear_orphans(&self.parent);
+        self.to.open_parent()?;
         let staged = Staged::new(
             tempfile::Builder::new()
                 .prefix(&staging::own_prefix())
                 .permissions(std::os::unix::fs::PermissionsExt::from_mode(0o755))
-                .tempdir_in(&self.parent)
+                .tempdir_in(&self.to.parent)
                 .with_context(|| {
                     format!(
                         "cannot create a staging directory in {}",
-                        self.parent.display()
+                        self.to.parent.display()
                     )
                 })?
                 .keep(),
@@ -332,7 +353,7 @@ impl OutputDir {
                 std::fs::create_dir_all(dir)
                     .with_context(|| format!("cannot create directory {}", dir.display()))?;
             }
-            write_synced(&path, bytes, &self.target.join(relative))?;
+            write_synced(&path, bytes, &self.to.target.join(relative))?;
             manifest.files.push(ManifestEntry {
                 name: name.clone(),
                 bytes: bytes.len() as u64,
@@ -344,11 +365,11 @@ impl OutputDir {
         write_synced(
             &staged.path.join(MANIFEST_NAME),
             &json,
-            &self.target.join(MANIFEST_NAME),
+            &self.to.target.join(MANIFEST_NAME),
         )?;
         sync_directory(&staged.path)?;
         self.publish(&staged.path)?;
-        sync_directory(&self.parent)
+        sync_directory(&self.to.parent)
         // `staged` now names the previous set (or nothing); dropping it removes that.
     }
 
@@ -359,8 +380,8 @@ impl OutputDir {
         let moved = |e: rustix::io::Errno| {
             CliError::Failure(anyhow::Error::new(std::io::Error::from(e)).context(format!(
                 "cannot move the finished output set to {} {}",
-                self.flag,
-                self.target.display()
+                self.to.flag,
+                self.to.target.display()
             )))
         };
         loop {
@@ -368,7 +389,7 @@ impl OutputDir {
                 CWD,
                 staged,
                 CWD,
-                &self.absolute,
+                &self.to.absolute,
                 RenameFlags::NOREPLACE,
             ) {
                 Ok(()) => return Ok(()),
@@ -376,22 +397,28 @@ impl OutputDir {
                 Err(e) => return Err(moved(e)),
             }
             // Something is there: it must still be a directory shadowlab may replace.
-            let meta = std::fs::symlink_metadata(&self.absolute);
+            let meta = std::fs::symlink_metadata(&self.to.absolute);
             match meta {
-                Ok(meta) if meta.is_dir() && is_replaceable(&self.absolute).unwrap_or(false) => {}
+                Ok(meta) if meta.is_dir() && is_replaceable(&self.to.absolute).unwrap_or(false) => {
+                }
                 Ok(_) => {
                     return Err(CliError::Input(format!(
                         "invalid {}: {} was changed during the run and is no longer an output \
                          set shadowlab may replace",
-                        self.flag,
-                        self.target.display()
+                        self.to.flag,
+                        self.to.target.display()
                     )));
                 }
                 // It went away since the rename was tried: try again.
                 Err(_) => continue,
             }
-            match rustix::fs::renameat_with(CWD, staged, CWD, &self.absolute, RenameFlags::EXCHANGE)
-            {
+            match rustix::fs::renameat_with(
+                CWD,
+                staged,
+                CWD,
+                &self.to.absolute,
+                RenameFlags::EXCHANGE,
+            ) {
                 Ok(()) => return Ok(()),
                 Err(rustix::io::Errno::NOENT) => continue,
                 Err(rustix::io::Errno::INVAL | rustix::io::Errno::NOSYS) => {
@@ -399,16 +426,16 @@ impl OutputDir {
                     // one in. Between the two renames the destination is briefly absent.
                     let aside = staged.with_file_name(format!("{}old", staging::own_prefix()));
                     let aside = Staged::new(aside);
-                    std::fs::rename(&self.absolute, &aside.path).with_context(|| {
+                    std::fs::rename(&self.to.absolute, &aside.path).with_context(|| {
                         format!(
                             "cannot move the previous set {} aside",
-                            self.target.display()
+                            self.to.target.display()
                         )
                     })?;
-                    std::fs::rename(staged, &self.absolute).with_context(|| {
+                    std::fs::rename(staged, &self.to.absolute).with_context(|| {
                         format!(
                             "cannot move the finished output set to {}",
-                            self.target.display()
+                            self.to.target.display()
                         )
                     })?;
                     return Ok(());
@@ -422,10 +449,7 @@ impl OutputDir {
 /// A single output file, checked before the work that fills it.
 #[derive(Debug)]
 pub(crate) struct OutputFile {
-    target: PathBuf,
-    absolute: PathBuf,
-    parent: PathBuf,
-    flag: &'static str,
+    to: Destination,
 }
 
 impl OutputFile {
@@ -436,50 +460,43 @@ impl OutputFile {
         flag: &'static str,
         estimate: u64,
     ) -> Result<Self, CliError> {
-        let (absolute, parent) = absolute_with_parent(&target, flag)?;
-        check_replaceable_file(&absolute, &target, flag)?;
-        check_location(&parent, flag, estimate)?;
-        Ok(Self {
-            target,
-            absolute,
-            parent,
-            flag,
-        })
+        let to = Destination::new(target, flag)?;
+        check_replaceable_file(&to.absolute, &to.target, flag)?;
+        check_location(&to.parent, flag, estimate)?;
+        Ok(Self { to })
     }
 
     /// The file as the user gave it.
     pub(crate) fn path(&self) -> &Path {
-        &self.target
+        &self.to.target
     }
 
     /// Writes `bytes` beside the destination and renames the file into place.
     pub(crate) fn write(&self, bytes: &[u8]) -> Result<(), CliError> {
-        std::fs::create_dir_all(&self.parent)
-            .with_context(|| format!("cannot create directory {}", self.parent.display()))?;
-        clear_orphans(&self.parent);
+        self.to.open_parent()?;
         let temporary = tempfile::Builder::new()
             .prefix(&staging::own_prefix())
-            .tempfile_in(&self.parent)
+            .tempfile_in(&self.to.parent)
             .with_context(|| {
                 format!(
                     "cannot create a temporary file in {}",
-                    self.parent.display()
+                    self.to.parent.display()
                 )
             })?;
         let (_, path) = temporary
             .keep()
             .context("cannot keep the temporary output file")?;
         let staged = Staged::new(path);
-        write_synced(&staged.path, bytes, &self.target)?;
-        check_replaceable_file(&self.absolute, &self.target, self.flag)?;
-        std::fs::rename(&staged.path, &self.absolute).with_context(|| {
+        write_synced(&staged.path, bytes, &self.to.target)?;
+        check_replaceable_file(&self.to.absolute, &self.to.target, self.to.flag)?;
+        std::fs::rename(&staged.path, &self.to.absolute).with_context(|| {
             format!(
                 "cannot move the finished file to {} {}",
-                self.flag,
-                self.target.display()
+                self.to.flag,
+                self.to.target.display()
             )
         })?;
-        sync_directory(&self.parent)
+        sync_directory(&self.to.parent)
     }
 }
 

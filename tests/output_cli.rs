@@ -44,6 +44,21 @@ fn analyze_args<'a>(scene: &'a str, techniques: &'a str, out: &'a str) -> Vec<&'
     ]
 }
 
+/// A scene file (in the first directory) and an output set's path `set` in an empty second one.
+fn fixture() -> (tempfile::TempDir, String, tempfile::TempDir, PathBuf) {
+    let scenes = tempfile::tempdir().unwrap();
+    let scene = scene_file(scenes.path());
+    let root = tempfile::tempdir().unwrap();
+    let out = root.path().join("set");
+    (scenes, scene, root, out)
+}
+
+/// Runs [`analyze_args`] and asserts success.
+fn analyze_ok(scene: &str, techniques: &str, out: &str) {
+    let output = shadowlab(&analyze_args(scene, techniques, out), None);
+    assert!(output.status.success(), "{}", stderr(&output));
+}
+
 fn spawn(args: &[&str]) -> Child {
     Command::new(env!("CARGO_BIN_EXE_shadowlab"))
         .args(args)
@@ -118,16 +133,11 @@ fn pictured(files: &[String]) -> Vec<String> {
 
 #[test]
 fn a_rerun_replaces_the_whole_set() {
-    let scenes = tempfile::tempdir().unwrap();
-    let scene = scene_file(scenes.path());
-    let root = tempfile::tempdir().unwrap();
-    let out = root.path().join("set");
+    let (_scenes, scene, root, out) = fixture();
     let out_s = out.to_str().unwrap();
-    let first = shadowlab(&analyze_args(&scene, "uniform,psm", out_s), None);
-    assert!(first.status.success(), "{}", stderr(&first));
+    analyze_ok(&scene, "uniform,psm", out_s);
     assert_eq!(pictured(&assert_whole_set(&out)), ["psm", "uniform"]);
-    let second = shadowlab(&analyze_args(&scene, "lispsm", out_s), None);
-    assert!(second.status.success(), "{}", stderr(&second));
+    analyze_ok(&scene, "lispsm", out_s);
     let files = assert_whole_set(&out);
     assert_eq!(
         pictured(&files),
@@ -139,10 +149,7 @@ fn a_rerun_replaces_the_whole_set() {
 
 #[test]
 fn two_concurrent_runs_leave_one_whole_set() {
-    let scenes = tempfile::tempdir().unwrap();
-    let scene = scene_file(scenes.path());
-    let root = tempfile::tempdir().unwrap();
-    let out = root.path().join("set");
+    let (_scenes, scene, root, out) = fixture();
     let out_s = out.to_str().unwrap();
     for _ in 0..3 {
         let a = spawn(&analyze_args(&scene, "uniform,psm", out_s));
@@ -163,13 +170,9 @@ fn two_concurrent_runs_leave_one_whole_set() {
 #[test]
 fn sigint_and_sigterm_leave_the_previous_set_and_no_staging() {
     use rustix::process::{Pid, Signal, kill_process};
-    let scenes = tempfile::tempdir().unwrap();
-    let scene = scene_file(scenes.path());
-    let root = tempfile::tempdir().unwrap();
-    let out = root.path().join("set");
+    let (_scenes, scene, root, out) = fixture();
     let out_s = out.to_str().unwrap();
-    let first = shadowlab(&analyze_args(&scene, "uniform", out_s), None);
-    assert!(first.status.success(), "{}", stderr(&first));
+    analyze_ok(&scene, "uniform", out_s);
     let before = assert_whole_set(&out);
     for (signal, code) in [(Signal::INT, 130), (Signal::TERM, 143)] {
         // The default resolutions take several seconds: the signal arrives mid-run.
@@ -199,13 +202,9 @@ fn sigint_and_sigterm_leave_the_previous_set_and_no_staging() {
 #[test]
 fn sigkill_at_any_moment_leaves_a_whole_set_and_the_next_run_clears_the_rest() {
     use rustix::process::{Pid, Signal, kill_process};
-    let scenes = tempfile::tempdir().unwrap();
-    let scene = scene_file(scenes.path());
-    let root = tempfile::tempdir().unwrap();
-    let out = root.path().join("set");
+    let (_scenes, scene, root, out) = fixture();
     let out_s = out.to_str().unwrap();
-    let first = shadowlab(&analyze_args(&scene, "uniform", out_s), None);
-    assert!(first.status.success(), "{}", stderr(&first));
+    analyze_ok(&scene, "uniform", out_s);
     let args = analyze_args(&scene, "uniform,psm", out_s);
     let start = Instant::now();
     let timed = shadowlab(&args, None);
@@ -223,8 +222,7 @@ fn sigkill_at_any_moment_leaves_a_whole_set_and_the_next_run_clears_the_rest() {
             "kill at {k}/8: a mixed set {techniques:?}"
         );
     }
-    let last = shadowlab(&analyze_args(&scene, "lispsm", out_s), None);
-    assert!(last.status.success(), "{}", stderr(&last));
+    analyze_ok(&scene, "lispsm", out_s);
     assert_eq!(pictured(&assert_whole_set(&out)), ["lispsm"]);
     assert!(
         staging_left(root.path()).is_empty(),
@@ -235,13 +233,9 @@ fn sigkill_at_any_moment_leaves_a_whole_set_and_the_next_run_clears_the_rest() {
 
 #[test]
 fn a_write_that_fails_keeps_the_previous_set() {
-    let scenes = tempfile::tempdir().unwrap();
-    let scene = scene_file(scenes.path());
-    let root = tempfile::tempdir().unwrap();
-    let out = root.path().join("set");
+    let (_scenes, scene, root, out) = fixture();
     let out_s = out.to_str().unwrap();
-    let first = shadowlab(&analyze_args(&scene, "uniform", out_s), None);
-    assert!(first.status.success(), "{}", stderr(&first));
+    analyze_ok(&scene, "uniform", out_s);
     let before = assert_whole_set(&out);
     // Files larger than 8 blocks fail to write (EFBIG) as on a full disk; the shell ignores
     // SIGXFSZ so that the write returns the error instead of killing the process.

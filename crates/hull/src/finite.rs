@@ -52,6 +52,16 @@ pub(crate) fn power_of_two_inverse(value: f64) -> f64 {
     2f64.powi(-exponent)
 }
 
+/// The power of two that brings `largest`, a magnitude (≥ 0), near 1 ([`power_of_two_inverse`]);
+/// 1 for 0.
+pub(crate) fn rescale_for(largest: f64) -> f64 {
+    if largest > 0.0 {
+        power_of_two_inverse(largest)
+    } else {
+        1.0
+    }
+}
+
 /// Coordinates smaller than this, after rescaling the largest to about 1 ([`power_of_two_inverse`]),
 /// are taken as zero by the exact orientation predicates ([`flush_tiny`]). `robust::orient2d` and
 /// `orient3d` are exact only while none of their products and error terms underflow; products of

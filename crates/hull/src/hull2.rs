@@ -9,7 +9,7 @@ use glam::DVec2;
 use robust::{Coord, orient2d};
 
 use crate::error::{Degeneracy, HullError, ValidationError};
-use crate::finite::{flush_tiny, power_of_two_inverse};
+use crate::finite::{flush_tiny, rescale_for};
 use crate::tolerance::{Scale, Tolerances};
 
 /// The convex hull of a 2-D point set: a point, a segment, or a polygon with an interior.
@@ -50,11 +50,7 @@ fn rescale_factor(points: &[DVec2]) -> f64 {
         .iter()
         .map(|p| p.abs().max_element())
         .fold(0.0_f64, f64::max);
-    if largest > 0.0 {
-        power_of_two_inverse(largest)
-    } else {
-        1.0
-    }
+    rescale_for(largest)
 }
 
 /// The convex hull of `points` by Andrew's monotone chain, exact: vertices are input points, turns

@@ -24,7 +24,7 @@ use glam::DVec3;
 use robust::{Coord3D, orient3d};
 
 use crate::error::{Degeneracy, HullError};
-use crate::finite::{flush_tiny, power_of_two_inverse};
+use crate::finite::{flush_tiny, rescale_for};
 use crate::plane::Plane;
 use crate::polyhedron::{ConvexPolyhedron, Face};
 use crate::tolerance::{Scale, Tolerances};
@@ -70,11 +70,7 @@ pub(crate) fn hull_with_snap(
         .iter()
         .map(|v| v.abs().max_element())
         .fold(0.0_f64, f64::max);
-    let factor = if largest > 0.0 {
-        power_of_two_inverse(largest)
-    } else {
-        1.0
-    };
+    let factor = rescale_for(largest);
     let scaled: Vec<Coord3D<f64>> = p
         .iter()
         .map(|v| Coord3D {
@@ -458,11 +454,7 @@ fn newell_plane(vertices: &[DVec3], loop_: &[usize]) -> Plane {
         .iter()
         .map(|d| d.abs().max_element())
         .fold(0.0_f64, f64::max);
-    let factor = if largest > 0.0 {
-        power_of_two_inverse(largest)
-    } else {
-        1.0
-    };
+    let factor = rescale_for(largest);
     let area: DVec3 = (0..n)
         .map(|k| (offsets[k] * factor).cross(offsets[(k + 1) % n] * factor))
         .sum();
