@@ -11,7 +11,7 @@ use crate::error::CliError;
 use crate::output::{ensure_directory, print_line, write_atomic};
 
 pub(crate) fn run(args: &RenderMeshArgs) -> Result<(), CliError> {
-    let mesh = shadowlab_scene::load_obj(&args.mesh).map_err(|e| CliError::Input(e.to_string()))?;
+    let mesh = shadowlab_scene::load_obj(&args.mesh).map_err(|e| CliError::from_input_file(&e))?;
     let (eye_width, eye_height) = args.eye_size;
     let view = BenchmarkView::new(&mesh.bounds(), eye_width, eye_height);
     let mut positions = mesh.positions().to_vec();
