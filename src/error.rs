@@ -4,6 +4,7 @@ use std::fmt;
 use std::process::ExitCode;
 
 use shadowlab_params::ParamError;
+use shadowlab_scene::ReadError;
 
 /// A failure of a subcommand.
 #[derive(Debug)]
@@ -21,6 +22,23 @@ impl CliError {
             Self::Input(_) => ExitCode::from(2),
             Self::Failure(_) => ExitCode::from(1),
         }
+    }
+
+    /// An error of reading an input file (a scene file, an OBJ file), whose message names the
+    /// file and the field or line: an input error (exit code 2), unless somewhere in its
+    /// `source()` chain the operating system failed to read a file that is there (exit code 1).
+    pub(crate) fn from_input_file(error: &(dyn std::error::Error + 'static)) -> Self {
+        let mut cause = Some(error);
+        while let Some(current) = cause {
+            if current
+                .downcast_ref::<ReadError>()
+                .is_some_and(|read| !read.is_bad_input())
+            {
+                return Self::Failure(anyhow::anyhow!("{error}"));
+            }
+            cause = current.source();
+        }
+        Self::Input(error.to_string())
     }
 
     /// An input error from the params crate, naming the command-line flag that carried the bad

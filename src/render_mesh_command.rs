@@ -17,7 +17,7 @@ pub(crate) fn run(args: &RenderMeshArgs) -> Result<(), CliError> {
     let estimate =
         png_bound(args.size, args.size, 4 + 4 + 2) + png_bound(eye_width, eye_height, 4 + 4 + 2);
     let out = OutputDir::check(args.out.clone(), "--out", estimate)?;
-    let mesh = shadowlab_scene::load_obj(&args.mesh).map_err(|e| CliError::Input(e.to_string()))?;
+    let mesh = shadowlab_scene::load_obj(&args.mesh).map_err(|e| CliError::from_input_file(&e))?;
     memory::check(
         &Workload {
             triangles: mesh.triangles().len() as u64,

@@ -6,6 +6,7 @@
 use std::path::Path;
 
 use shadowlab_raster::{DepthFormat, MAX_TARGET_SIZE};
+use shadowlab_scene::scene_file::MAX_IMAGE_SIDE;
 use shadowlab_scene::{DEFAULT_SCENE, Scene, ShadowSettings, builtin_scene, load_scene};
 use shadowlab_shadow::optimal::OptimalOptions;
 use shadowlab_shadow::{Bias, Filter, FocusPolicy, Lookup, PlanOptions, Splits, Technique};
@@ -15,6 +16,9 @@ use crate::args::{
     StatedWarps, border_fraction, parse_size,
 };
 use crate::error::CliError;
+
+// A scene file's camera image must fit a raster target, so that every scene has an eye pass.
+const _: () = assert!(MAX_IMAGE_SIDE == MAX_TARGET_SIZE);
 
 /// Everything `render` and `inspect` need, resolved.
 pub(crate) struct Resolved {
@@ -261,12 +265,11 @@ pub(crate) fn optimizer_flags(args: &OptimizerArgs) -> Result<OptimalOptions, Cl
 pub(crate) fn load_scene_argument(name: Option<&str>) -> Result<Scene, CliError> {
     let name = name.unwrap_or(DEFAULT_SCENE);
     let path = Path::new(name);
-    let result = if path.exists() || name.ends_with(".toml") {
-        load_scene(path)
+    if path.exists() || name.ends_with(".toml") {
+        load_scene(path).map_err(|e| CliError::from_input_file(&e))
     } else {
-        builtin_scene(name)
-    };
-    result.map_err(|e| CliError::Input(e.to_string()))
+        builtin_scene(name).map_err(|e| CliError::Input(e.to_string()))
+    }
 }
 
 /// How errors name the scene's settings: the file, or the built-in scene.

@@ -1,11 +1,11 @@
 //! The built-in scenes: the files of `data/scenes/` and the meshes they use, embedded in the
 //! binary, so that they load without the repository and exactly as from disk.
 
+use std::fmt;
 use std::path::Path;
 
-use crate::error::SceneError;
 use crate::scene::Scene;
-use crate::scene_file::{self, ObjFiles};
+use crate::scene_file::{self, ObjFiles, SceneFileError};
 
 /// The names of the built-in scenes (`data/scenes/<name>.toml`; see `data/scenes/README.md`):
 /// - `outdoor`: a ground with rows of poles and boxes out to the far plane of 400 and the bunny
@@ -70,9 +70,9 @@ pub fn builtin_scene_text(name: &str) -> Option<&'static str> {
 /// `data/scenes/<name>.toml`, but the built-ins are tested to load.
 ///
 /// # Errors
-/// [`SceneError::UnknownScene`] for a name not in [`BUILTIN_SCENES`]; its message lists them.
-pub fn builtin_scene(name: &str) -> Result<Scene, SceneError> {
-    let text = builtin_scene_text(name).ok_or_else(|| SceneError::UnknownScene {
+/// [`BuiltinSceneError::Unknown`] for a name not in [`BUILTIN_SCENES`]; its message lists them.
+pub fn builtin_scene(name: &str) -> Result<Scene, BuiltinSceneError> {
+    let text = builtin_scene_text(name).ok_or_else(|| BuiltinSceneError::Unknown {
         name: name.to_owned(),
     })?;
     let directory = Path::new(SCENE_DIRECTORY);
@@ -85,4 +85,40 @@ pub fn builtin_scene(name: &str) -> Result<Scene, SceneError> {
             files: &OBJ_FILES,
         },
     )
+    .map_err(|error| BuiltinSceneError::File(Box::new(error)))
+}
+
+/// Why [`builtin_scene`] gave no scene.
+#[non_exhaustive]
+#[derive(Debug)]
+pub enum BuiltinSceneError {
+    /// A name not in [`BUILTIN_SCENES`].
+    Unknown {
+        /// The name asked for.
+        name: String,
+    },
+    /// The embedded file did not load: a bug, as the built-ins are tested to load.
+    File(Box<SceneFileError>),
+}
+
+impl fmt::Display for BuiltinSceneError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::Unknown { name } => write!(
+                f,
+                "there is no built-in scene `{name}`; the built-in scenes are {}",
+                BUILTIN_SCENES.join(", ")
+            ),
+            Self::File(error) => write!(f, "{error}"),
+        }
+    }
+}
+
+impl std::error::Error for BuiltinSceneError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            Self::Unknown { .. } => None,
+            Self::File(error) => Some(error.as_ref()),
+        }
+    }
 }

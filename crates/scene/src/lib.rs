@@ -17,7 +17,7 @@
 //! assert_eq!(scene.triangle_count(), 2 + 2 * 32 * 15);
 //! assert_eq!(scene.group_names(), ["plane", "sphere"]);
 //! assert!(scene.bounds().contains(DVec3::new(0.0, 2.5, 0.0)));
-//! # Ok::<(), shadowlab_scene::SceneError>(())
+//! # Ok::<(), shadowlab_scene::ShapeError>(())
 //! ```
 //!
 //! ```
@@ -27,7 +27,7 @@
 //! assert_eq!(scene.camera.projection.far(), 400.0);
 //! assert!(matches!(scene.lights[0], SceneLight::Directional { .. }));
 //! assert!(scene.bounds().contains(scene.camera.pose.eye()));
-//! # Ok::<(), shadowlab_scene::SceneError>(())
+//! # Ok::<(), shadowlab_scene::BuiltinSceneError>(())
 //! ```
 //!
 //! # Conventions
@@ -45,9 +45,13 @@
 //! - **Lights:** a scene file gives the direction a directional light **travels**;
 //!   [`SceneLight::Directional`] holds hull's `to_light`, its negation, normalised. Scene-file
 //!   angles are degrees; [`Scene`] holds radians.
-//! - **Errors** are [`SceneError`] values naming the parameter, vertex, triangle, file and line,
-//!   or scene-file field; nothing panics on bad input except [`Mesh::transformed`] and
-//!   [`Mesh::merged`], the documented panicking forms of [`Mesh::try_transformed`] and
+//! - **Errors** are one type per module, each naming what was wrong and where, and composed by
+//!   `source()`: [`MeshError`] (vertex, triangle, group), [`ShapeError`] (parameter),
+//!   [`ReadError`] (a file missing, special or too large: [`MAX_OBJ_BYTES`],
+//!   [`MAX_SCENE_FILE_BYTES`]), [`ObjError`] (file and line), [`SceneFileError`] (file and field,
+//!   its source the OBJ, shape or mesh error behind it) and [`BuiltinSceneError`]. Nothing panics
+//!   on bad input except [`Mesh::transformed`] and [`Mesh::merged`], the documented panicking
+//!   forms of [`Mesh::try_transformed`] and
 //!   [`Mesh::try_merged`], and [`SceneLight::light`] on a hand-built zero or non-finite
 //!   `to_light`.
 //! - **Determinism:** no randomness and no hash-order dependence; the same input gives
@@ -58,20 +62,23 @@
 pub mod benchmark;
 mod bounds;
 mod builtin;
-mod error;
 mod mesh;
 mod normals;
+mod number;
 mod obj;
-mod obj_check;
 pub mod procedural;
+mod read;
 mod scene;
 pub mod scene_file;
 
 pub use bounds::Bounds;
-pub use builtin::{BUILTIN_SCENES, DEFAULT_SCENE, builtin_scene, builtin_scene_text};
-pub use error::{ObjElement, ObjProblem, SceneError, SceneFileProblem};
-pub use mesh::{DEFAULT_GROUP_NAME, Mesh};
+pub use builtin::{
+    BUILTIN_SCENES, BuiltinSceneError, DEFAULT_SCENE, builtin_scene, builtin_scene_text,
+};
+pub use mesh::{DEFAULT_GROUP_NAME, MAX_COORDINATE, MIN_EXTENT, Mesh, MeshError};
 pub use normals::FALLBACK_NORMAL;
-pub use obj::{load_obj, parse_obj};
+pub use obj::{ObjElement, ObjError, ObjProblem, load_obj, parse_obj};
+pub use procedural::ShapeError;
+pub use read::{MAX_OBJ_BYTES, MAX_SCENE_FILE_BYTES, ReadError};
 pub use scene::{Camera, Scene, SceneLight, ShadowSettings};
-pub use scene_file::{load_scene, parse_scene};
+pub use scene_file::{SceneFileError, SceneFileProblem, load_scene, parse_scene};

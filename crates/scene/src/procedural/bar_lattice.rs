@@ -2,9 +2,9 @@
 
 use glam::DVec3;
 
+use super::ShapeError;
 use super::builder::MeshBuilder;
 use super::parameters::{positive, triangle_budget};
-use crate::error::SceneError;
 use crate::mesh::Mesh;
 
 /// The group names of [`bar_lattice`]: group `a` holds the bars along axis `a`.
@@ -24,21 +24,21 @@ pub const BAR_LATTICE_GROUPS: [&str; 3] = ["bars along x", "bars along y", "bars
 /// ([`BAR_LATTICE_GROUPS`]). The bounds are `±(cells·spacing/2 + thickness/2)` on each axis.
 ///
 /// # Errors
-/// [`SceneError::InvalidParameter`] naming `spacing` (finite and > 0), `thickness` (finite, > 0
+/// [`ShapeError::InvalidParameter`] naming `spacing` (finite and > 0), `thickness` (finite, > 0
 /// and less than `spacing`, so that the bars stay apart) or `cells` (at least one non-zero);
-/// [`SceneError::TooManyTriangles`].
-pub fn bar_lattice(cells: [u32; 3], spacing: f64, thickness: f64) -> Result<Mesh, SceneError> {
+/// [`ShapeError::TooManyTriangles`].
+pub fn bar_lattice(cells: [u32; 3], spacing: f64, thickness: f64) -> Result<Mesh, ShapeError> {
     let spacing = positive("spacing", spacing)?;
     let thickness = positive("thickness", thickness)?;
     if thickness >= spacing {
-        return Err(SceneError::InvalidParameter {
+        return Err(ShapeError::InvalidParameter {
             parameter: "thickness",
             value: thickness,
             requirement: "less than `spacing`",
         });
     }
     if cells == [0; 3] {
-        return Err(SceneError::InvalidParameter {
+        return Err(ShapeError::InvalidParameter {
             parameter: "cells",
             value: 0.0,
             requirement: "non-zero on at least one axis",

@@ -2,7 +2,7 @@
 
 use glam::DVec3;
 
-use crate::error::SceneError;
+use super::ShapeError;
 use crate::mesh::Mesh;
 
 /// A mesh under construction. Procedural shapes check their triangle budget first, so the vertex
@@ -60,10 +60,14 @@ impl MeshBuilder {
     }
 
     /// The finished mesh, with the given group names.
-    pub(super) fn finish(self, group_names: &[&str]) -> Result<Mesh, SceneError> {
-        Mesh::with_normals(self.positions, self.normals, self.triangles)?.with_groups(
+    ///
+    /// # Errors
+    /// [`ShapeError::Mesh`] if a vertex lies beyond ±[`crate::MAX_COORDINATE`] (a size too large).
+    pub(super) fn finish(self, group_names: &[&str]) -> Result<Mesh, ShapeError> {
+        let mesh = Mesh::with_normals(self.positions, self.normals, self.triangles)?.with_groups(
             self.groups,
             group_names.iter().map(|&name| name.to_owned()).collect(),
-        )
+        )?;
+        Ok(mesh)
     }
 }

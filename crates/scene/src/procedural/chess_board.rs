@@ -2,9 +2,9 @@
 
 use glam::DVec3;
 
+use super::ShapeError;
 use super::builder::MeshBuilder;
 use super::parameters::{non_negative, positive};
-use crate::error::SceneError;
 use crate::mesh::Mesh;
 
 /// The group id of the dark squares of [`chess_board`].
@@ -28,9 +28,9 @@ pub const CHESS_FRAME: u32 = 2;
 /// triangles, or 200 with the frame.
 ///
 /// # Errors
-/// [`SceneError::InvalidParameter`] naming `square_size` (finite and > 0) or `frame_width` (finite
+/// [`ShapeError::InvalidParameter`] naming `square_size` (finite and > 0) or `frame_width` (finite
 /// and ≥ 0).
-pub fn chess_board(square_size: f64, frame_width: f64) -> Result<Mesh, SceneError> {
+pub fn chess_board(square_size: f64, frame_width: f64) -> Result<Mesh, ShapeError> {
     let square_size = positive("square_size", square_size)?;
     let frame_width = non_negative("frame_width", frame_width)?;
     let framed = frame_width > 0.0;

@@ -4,9 +4,9 @@ use std::f64::consts::TAU;
 
 use glam::DVec3;
 
+use super::ShapeError;
 use super::builder::MeshBuilder;
 use super::parameters::{at_least, positive, triangle_budget};
-use crate::error::SceneError;
 use crate::mesh::Mesh;
 
 /// A closed cylinder of the given radius and height, centred on the origin with its axis along y
@@ -17,9 +17,9 @@ use crate::mesh::Mesh;
 /// `"cylinder"`.
 ///
 /// # Errors
-/// [`SceneError::InvalidParameter`] naming `radius` or `height` (finite and > 0) or `segments`
-/// (at least 3); [`SceneError::TooManyTriangles`].
-pub fn cylinder(radius: f64, height: f64, segments: u32) -> Result<Mesh, SceneError> {
+/// [`ShapeError::InvalidParameter`] naming `radius` or `height` (finite and > 0) or `segments`
+/// (at least 3); [`ShapeError::TooManyTriangles`].
+pub fn cylinder(radius: f64, height: f64, segments: u32) -> Result<Mesh, ShapeError> {
     let radius = positive("radius", radius)?;
     let half_height = 0.5 * positive("height", height)?;
     let segments = at_least("segments", segments, 3, "at least 3")?;

@@ -1,7 +1,7 @@
 //! Procedural meshes: the shapes of shadow-map test scenes, built exactly from their parameters.
 //!
-//! Every function validates its parameters and returns [`SceneError::InvalidParameter`] naming the
-//! first bad one, or [`SceneError::TooManyTriangles`] past [`MAX_TRIANGLES`].
+//! Every function validates its parameters and returns [`ShapeError::InvalidParameter`] naming the
+//! first bad one, or [`ShapeError::TooManyTriangles`] past [`MAX_TRIANGLES`].
 //!
 //! # Conventions
 //! - **y is up** (the world is right-handed, as in `shadowlab-hull`); every shape is centred on the
@@ -20,6 +20,7 @@ mod builder;
 mod chess_board;
 mod cuboid;
 mod cylinder;
+mod error;
 mod parameters;
 mod plane;
 mod sphere;
@@ -28,11 +29,9 @@ pub use bar_lattice::{BAR_LATTICE_GROUPS, bar_lattice};
 pub use chess_board::{CHESS_DARK, CHESS_FRAME, CHESS_LIGHT, chess_board};
 pub use cuboid::cuboid;
 pub use cylinder::cylinder;
+pub use error::ShapeError;
 pub use plane::plane;
 pub use sphere::sphere;
-
-#[cfg(doc)]
-use crate::SceneError;
 
 /// The most triangles a procedural mesh may have: 2²⁴ = 16 777 216 (about 20 times the Stanford
 /// dragon), so that a mistyped parameter fails at once instead of exhausting memory.

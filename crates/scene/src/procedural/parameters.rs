@@ -1,14 +1,14 @@
 //! Validation of procedural parameters: each check names the parameter and the rule it breaks.
 
-use crate::error::SceneError;
+use super::ShapeError;
 use crate::procedural::MAX_TRIANGLES;
 
 /// `value` if it is finite and > 0.
-pub(super) fn positive(parameter: &'static str, value: f64) -> Result<f64, SceneError> {
+pub(super) fn positive(parameter: &'static str, value: f64) -> Result<f64, ShapeError> {
     if value.is_finite() && value > 0.0 {
         Ok(value)
     } else {
-        Err(SceneError::InvalidParameter {
+        Err(ShapeError::InvalidParameter {
             parameter,
             value,
             requirement: "finite and > 0",
@@ -17,11 +17,11 @@ pub(super) fn positive(parameter: &'static str, value: f64) -> Result<f64, Scene
 }
 
 /// `value` if it is finite and ≥ 0.
-pub(super) fn non_negative(parameter: &'static str, value: f64) -> Result<f64, SceneError> {
+pub(super) fn non_negative(parameter: &'static str, value: f64) -> Result<f64, ShapeError> {
     if value.is_finite() && value >= 0.0 {
         Ok(value)
     } else {
-        Err(SceneError::InvalidParameter {
+        Err(ShapeError::InvalidParameter {
             parameter,
             value,
             requirement: "finite and ≥ 0",
@@ -35,11 +35,11 @@ pub(super) fn at_least(
     value: u32,
     minimum: u32,
     requirement: &'static str,
-) -> Result<u32, SceneError> {
+) -> Result<u32, ShapeError> {
     if value >= minimum {
         Ok(value)
     } else {
-        Err(SceneError::InvalidParameter {
+        Err(ShapeError::InvalidParameter {
             parameter,
             value: f64::from(value),
             requirement,
@@ -49,9 +49,9 @@ pub(super) fn at_least(
 
 /// Checks a triangle count against [`MAX_TRIANGLES`]. Counts are computed in u128, where products
 /// of a few u32 parameters cannot overflow.
-pub(super) fn triangle_budget(shape: &'static str, count: u128) -> Result<(), SceneError> {
+pub(super) fn triangle_budget(shape: &'static str, count: u128) -> Result<(), ShapeError> {
     if count > u128::from(MAX_TRIANGLES) {
-        Err(SceneError::TooManyTriangles {
+        Err(ShapeError::TooManyTriangles {
             shape,
             count,
             max: MAX_TRIANGLES,

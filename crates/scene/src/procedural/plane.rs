@@ -2,9 +2,9 @@
 
 use glam::DVec3;
 
+use super::ShapeError;
 use super::builder::MeshBuilder;
 use super::parameters::{at_least, positive, triangle_budget};
-use crate::error::SceneError;
 use crate::mesh::Mesh;
 
 /// A rectangle of `size_x × size_z` in the plane y = 0, centred on the origin and facing +y,
@@ -12,9 +12,9 @@ use crate::mesh::Mesh;
 /// One group, `"plane"`.
 ///
 /// # Errors
-/// [`SceneError::InvalidParameter`] naming `size_x` or `size_z` (finite and > 0) or `segments`
-/// (at least 1); [`SceneError::TooManyTriangles`].
-pub fn plane(size_x: f64, size_z: f64, segments: u32) -> Result<Mesh, SceneError> {
+/// [`ShapeError::InvalidParameter`] naming `size_x` or `size_z` (finite and > 0) or `segments`
+/// (at least 1); [`ShapeError::TooManyTriangles`].
+pub fn plane(size_x: f64, size_z: f64, segments: u32) -> Result<Mesh, ShapeError> {
     let size = DVec3::new(
         positive("size_x", size_x)?,
         0.0,

@@ -4,9 +4,9 @@ use std::f64::consts::{PI, TAU};
 
 use glam::DVec3;
 
+use super::ShapeError;
 use super::builder::MeshBuilder;
 use super::parameters::{at_least, positive, triangle_budget};
-use crate::error::SceneError;
 use crate::mesh::Mesh;
 
 /// A closed UV sphere of the given radius, centred on the origin with its poles on the y axis:
@@ -18,9 +18,9 @@ use crate::mesh::Mesh;
 /// The vertex at (θ, φ) is `radius·(sin θ cos φ, cos θ, sin θ sin φ)`.
 ///
 /// # Errors
-/// [`SceneError::InvalidParameter`] naming `radius` (finite and > 0), `segments` (at least 3) or
-/// `rings` (at least 2); [`SceneError::TooManyTriangles`].
-pub fn sphere(radius: f64, segments: u32, rings: u32) -> Result<Mesh, SceneError> {
+/// [`ShapeError::InvalidParameter`] naming `radius` (finite and > 0), `segments` (at least 3) or
+/// `rings` (at least 2); [`ShapeError::TooManyTriangles`].
+pub fn sphere(radius: f64, segments: u32, rings: u32) -> Result<Mesh, ShapeError> {
     let radius = positive("radius", radius)?;
     let segments = at_least("segments", segments, 3, "at least 3")?;
     let rings = at_least("rings", rings, 2, "at least 2")?;

@@ -3,10 +3,16 @@
 use std::path::Path;
 
 use glam::DVec3;
+
 use shadowlab_hull::HullError;
 
-use crate::error::{SceneError, SceneFileProblem};
+use super::error::{SceneFileError, SceneFileProblem};
+use super::{MAX_IMAGE_SIDE, MIN_ANGLE_DEGREES};
+use crate::mesh::MeshError;
 use crate::normals;
+use crate::number::Shown;
+use crate::obj::ObjError;
+use crate::procedural::ShapeError;
 
 /// The file being read, for naming it in errors.
 #[derive(Clone, Copy)]
@@ -34,27 +40,53 @@ impl<'a> Checker<'a> {
         Self { path }
     }
 
-    /// A [`SceneError::SceneFile`] for `field`.
-    pub(super) fn error(&self, field: impl Into<String>, problem: SceneFileProblem) -> SceneError {
-        SceneError::SceneFile {
+    /// A [`SceneFileError::Field`] for `field`.
+    pub(super) fn error(
+        &self,
+        field: impl Into<String>,
+        problem: SceneFileProblem,
+    ) -> SceneFileError {
+        SceneFileError::Field {
             path: self.path.to_owned(),
             field: field.into(),
             problem,
         }
     }
 
-    /// A [`SceneError::SceneMesh`] wrapping the error of building `field`.
-    pub(super) fn mesh_error(&self, field: impl Into<String>, source: SceneError) -> SceneError {
-        SceneError::SceneMesh {
+    /// A [`SceneFileError::Obj`] wrapping the OBJ loader's error about `field`.
+    pub(super) fn obj_error(&self, field: impl Into<String>, source: ObjError) -> SceneFileError {
+        SceneFileError::Obj {
             path: self.path.to_owned(),
             field: field.into(),
             source: Box::new(source),
         }
     }
 
-    /// A [`SceneError::SceneHull`] wrapping hull's error about `field`.
-    pub(super) fn hull_error(&self, field: impl Into<String>, source: HullError) -> SceneError {
-        SceneError::SceneHull {
+    /// A [`SceneFileError::Shape`] wrapping the error of building the shape of `field`.
+    pub(super) fn shape_error(
+        &self,
+        field: impl Into<String>,
+        source: ShapeError,
+    ) -> SceneFileError {
+        SceneFileError::Shape {
+            path: self.path.to_owned(),
+            field: field.into(),
+            source,
+        }
+    }
+
+    /// A [`SceneFileError::Mesh`] wrapping the error of moving, copying or merging `field`.
+    pub(super) fn mesh_error(&self, field: impl Into<String>, source: MeshError) -> SceneFileError {
+        SceneFileError::Mesh {
+            path: self.path.to_owned(),
+            field: field.into(),
+            source,
+        }
+    }
+
+    /// A [`SceneFileError::Hull`] wrapping hull's error about `field`.
+    pub(super) fn hull_error(&self, field: impl Into<String>, source: HullError) -> SceneFileError {
+        SceneFileError::Hull {
             path: self.path.to_owned(),
             field: field.into(),
             source,
@@ -62,7 +94,7 @@ impl<'a> Checker<'a> {
     }
 
     /// `value` if it is finite.
-    pub(super) fn finite(&self, field: &str, value: f64) -> Result<f64, SceneError> {
+    pub(super) fn finite(&self, field: &str, value: f64) -> Result<f64, SceneFileError> {
         if value.is_finite() {
             Ok(value)
         } else {
@@ -71,7 +103,7 @@ impl<'a> Checker<'a> {
     }
 
     /// `value` if it is finite and > 0.
-    pub(super) fn positive(&self, field: &str, value: f64) -> Result<f64, SceneError> {
+    pub(super) fn positive(&self, field: &str, value: f64) -> Result<f64, SceneFileError> {
         if self.finite(field, value)? > 0.0 {
             Ok(value)
         } else {
@@ -79,7 +111,7 @@ impl<'a> Checker<'a> {
                 field,
                 SceneFileProblem::OutOfRange {
                     value,
-                    requirement: "> 0",
+                    requirement: "> 0".into(),
                 },
             ))
         }
@@ -92,7 +124,7 @@ impl<'a> Checker<'a> {
         value: u32,
         minimum: u32,
         requirement: &'static str,
-    ) -> Result<u32, SceneError> {
+    ) -> Result<u32, SceneFileError> {
         if value >= minimum {
             Ok(value)
         } else {
@@ -100,29 +132,48 @@ impl<'a> Checker<'a> {
                 field,
                 SceneFileProblem::OutOfRange {
                     value: f64::from(value),
-                    requirement,
+                    requirement: requirement.into(),
                 },
             ))
         }
     }
 
-    /// A full angle in degrees (a field of view, a cone) strictly between 0 and 180, in radians.
-    pub(super) fn angle(&self, field: &str, degrees: f64) -> Result<f64, SceneError> {
-        if self.finite(field, degrees)? > 0.0 && degrees < 180.0 {
+    /// A full angle in degrees (a field of view, a cone) in [[`MIN_ANGLE_DEGREES`], 180), in
+    /// radians.
+    pub(super) fn angle(&self, field: &str, degrees: f64) -> Result<f64, SceneFileError> {
+        if self.finite(field, degrees)? >= MIN_ANGLE_DEGREES && degrees < 180.0 {
             Ok(degrees.to_radians())
         } else {
             Err(self.error(
                 field,
                 SceneFileProblem::OutOfRange {
                     value: degrees,
-                    requirement: "in (0, 180) degrees",
+                    requirement: format!(
+                        "in [{}, 180) degrees (MIN_ANGLE_DEGREES)",
+                        Shown(MIN_ANGLE_DEGREES)
+                    ),
+                },
+            ))
+        }
+    }
+
+    /// An image side in pixels, in 1..=[`MAX_IMAGE_SIDE`].
+    pub(super) fn image_side(&self, field: &str, value: u32) -> Result<u32, SceneFileError> {
+        if (1..=MAX_IMAGE_SIDE).contains(&value) {
+            Ok(value)
+        } else {
+            Err(self.error(
+                field,
+                SceneFileProblem::OutOfRange {
+                    value: f64::from(value),
+                    requirement: format!("in 1..={MAX_IMAGE_SIDE} pixels (MAX_IMAGE_SIDE)"),
                 },
             ))
         }
     }
 
     /// The vector `values` if every coordinate is finite; a bad one is named `field[i]`.
-    pub(super) fn vector(&self, field: &str, values: [f64; 3]) -> Result<DVec3, SceneError> {
+    pub(super) fn vector(&self, field: &str, values: [f64; 3]) -> Result<DVec3, SceneFileError> {
         for (index, &value) in values.iter().enumerate() {
             self.finite(&format!("{field}[{index}]"), value)?;
         }
@@ -130,14 +181,14 @@ impl<'a> Checker<'a> {
     }
 
     /// The vector `values` normalised, if it is finite and not zero.
-    pub(super) fn direction(&self, field: &str, values: [f64; 3]) -> Result<DVec3, SceneError> {
+    pub(super) fn direction(&self, field: &str, values: [f64; 3]) -> Result<DVec3, SceneFileError> {
         let value = self.vector(field, values)?;
         normals::unit(value)
             .ok_or_else(|| self.error(field, SceneFileProblem::ZeroVector { value }))
     }
 
     /// `value` if it is finite and ≥ 0.
-    pub(super) fn non_negative(&self, field: &str, value: f64) -> Result<f64, SceneError> {
+    pub(super) fn non_negative(&self, field: &str, value: f64) -> Result<f64, SceneFileError> {
         if self.finite(field, value)? >= 0.0 {
             Ok(value)
         } else {
@@ -145,20 +196,20 @@ impl<'a> Checker<'a> {
                 field,
                 SceneFileProblem::OutOfRange {
                     value,
-                    requirement: ">= 0",
+                    requirement: ">= 0".into(),
                 },
             ))
         }
     }
 
     /// `value` if it is finite and not 0.
-    pub(super) fn non_zero(&self, field: &str, value: f64) -> Result<f64, SceneError> {
+    pub(super) fn non_zero(&self, field: &str, value: f64) -> Result<f64, SceneFileError> {
         if self.finite(field, value)? == 0.0 {
             Err(self.error(
                 field,
                 SceneFileProblem::OutOfRange {
                     value,
-                    requirement: "non-zero",
+                    requirement: "non-zero".into(),
                 },
             ))
         } else {
@@ -171,7 +222,7 @@ impl<'a> Checker<'a> {
         &self,
         first: (&str, bool),
         second: (&str, bool),
-    ) -> Result<(), SceneError> {
+    ) -> Result<(), SceneFileError> {
         if first.1 && second.1 {
             Err(self.error(
                 first.0,

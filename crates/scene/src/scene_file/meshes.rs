@@ -7,11 +7,12 @@ use glam::{DAffine3, DMat3, DVec3};
 
 use super::ObjFiles;
 use super::checks::{Checker, field};
+use super::error::{SceneFileError, SceneFileProblem};
 use super::raw::{RawMesh, RawScale, ShapeKind};
-use crate::error::{SceneError, SceneFileProblem};
-use crate::mesh::Mesh;
-use crate::obj::{load_obj, parse_obj};
-use crate::procedural::{self, MAX_TRIANGLES};
+use crate::mesh::{MIN_EXTENT, Mesh};
+use crate::obj::{ObjError, load_obj, parse_obj};
+use crate::procedural::{self, MAX_TRIANGLES, ShapeError};
+use crate::read::ReadError;
 
 /// Default `size` of a plane, `[x, z]`.
 const PLANE_SIZE: [f64; 2] = [1.0, 1.0];
@@ -38,12 +39,13 @@ const CHESS_SQUARE_SIZE: f64 = 0.125;
 /// Default `frame_width` of a chess board.
 const CHESS_FRAME_WIDTH: f64 = 0.0;
 
-/// Every entry built and merged: group k of the result is entry k.
+/// Every entry built and merged: group k of the result is entry k. The merged mesh must span at
+/// least [`MIN_EXTENT`].
 pub(super) fn scene_mesh(
     checker: Checker<'_>,
     entries: &[RawMesh],
     obj_files: &ObjFiles<'_>,
-) -> Result<Mesh, SceneError> {
+) -> Result<Mesh, SceneFileError> {
     if entries.is_empty() {
         return Err(checker.error(
             "mesh",
@@ -57,7 +59,12 @@ pub(super) fn scene_mesh(
         .enumerate()
         .map(|(index, entry)| mesh_entry(checker, index, entry, obj_files))
         .collect::<Result<Vec<_>, _>>()?;
-    Mesh::try_merged(&meshes).map_err(|error| checker.mesh_error("mesh", error))
+    let mesh = Mesh::try_merged(&meshes).map_err(|error| checker.mesh_error("mesh", error))?;
+    let extent = mesh.bounds().size().max_element();
+    if extent < MIN_EXTENT {
+        return Err(checker.error("mesh", SceneFileProblem::DegenerateExtent { extent }));
+    }
+    Ok(mesh)
 }
 
 /// Entry `index`: its mesh in one group named by the entry, transformed and copied.
@@ -66,7 +73,7 @@ fn mesh_entry(
     index: usize,
     raw: &RawMesh,
     obj_files: &ObjFiles<'_>,
-) -> Result<Mesh, SceneError> {
+) -> Result<Mesh, SceneFileError> {
     let prefix = format!("mesh[{index}]");
     let (mesh, default_name) = match (&raw.obj, raw.shape) {
         (Some(_), Some(_)) => {
@@ -89,7 +96,7 @@ fn mesh_entry(
             not_applicable(checker, &prefix, raw, &[], "an obj mesh")?;
             let mesh = obj_files
                 .load(obj)
-                .map_err(|error| checker.mesh_error(field(&prefix, "obj"), error))?;
+                .map_err(|error| checker.obj_error(field(&prefix, "obj"), error))?;
             let stem = Path::new(obj).file_stem().unwrap_or_default();
             (mesh, stem.to_string_lossy().into_owned())
         }
@@ -120,7 +127,7 @@ fn not_applicable(
     raw: &RawMesh,
     allowed: &[&str],
     to: &str,
-) -> Result<(), SceneError> {
+) -> Result<(), SceneFileError> {
     match raw
         .parameters()
         .into_iter()
@@ -140,20 +147,20 @@ fn one_group(
     prefix: &str,
     mesh: Mesh,
     name: &str,
-) -> Result<Mesh, SceneError> {
+) -> Result<Mesh, SceneFileError> {
     let groups = vec![0; mesh.triangle_count()];
     mesh.with_groups(groups, vec![name.to_owned()])
         .map_err(|error| checker.mesh_error(prefix, error))
 }
 
 /// The procedural mesh of a `shape` entry, its parameters checked and named here; rules between
-/// parameters and the triangle budget are `procedural`'s, wrapped as [`SceneError::SceneMesh`].
+/// parameters and the triangle budget are `procedural`'s, wrapped as [`SceneFileError::Shape`].
 fn build_shape(
     checker: Checker<'_>,
     prefix: &str,
     shape: ShapeKind,
     raw: &RawMesh,
-) -> Result<Mesh, SceneError> {
+) -> Result<Mesh, SceneFileError> {
     let positive = |name: &str, value: Option<f64>, default: f64| {
         value.map_or(Ok(default), |v| checker.positive(&field(prefix, name), v))
     };
@@ -195,7 +202,7 @@ fn build_shape(
             })?,
         ),
     };
-    mesh.map_err(|error| checker.mesh_error(prefix, error))
+    mesh.map_err(|error| checker.shape_error(prefix, error))
 }
 
 /// The `size` array of a plane (N = 2) or box (N = 3): N positive values, named `size[i]`.
@@ -204,7 +211,7 @@ fn sizes<const N: usize>(
     prefix: &str,
     size: Option<&[f64]>,
     default: [f64; N],
-) -> Result<[f64; N], SceneError> {
+) -> Result<[f64; N], SceneFileError> {
     let Some(size) = size else {
         return Ok(default);
     };
@@ -231,7 +238,7 @@ fn transform(
     checker: Checker<'_>,
     prefix: &str,
     raw: &RawMesh,
-) -> Result<Option<DAffine3>, SceneError> {
+) -> Result<Option<DAffine3>, SceneFileError> {
     if raw.translate.is_none() && raw.rotate.is_none() && raw.scale.is_none() {
         return Ok(None);
     }
@@ -312,7 +319,7 @@ fn copies(
     raw: &RawMesh,
     mesh: Mesh,
     name: &str,
-) -> Result<Mesh, SceneError> {
+) -> Result<Mesh, SceneFileError> {
     let copies_field = field(prefix, "copies");
     let count = match raw.copies {
         Some(count) => checker.at_least(&copies_field, count, 1, "at least 1")?,
@@ -340,9 +347,9 @@ fn copies(
     };
     let triangles = u128::from(count) * mesh.triangle_count() as u128;
     if triangles > u128::from(MAX_TRIANGLES) {
-        return Err(checker.mesh_error(
+        return Err(checker.shape_error(
             copies_field,
-            SceneError::TooManyTriangles {
+            ShapeError::TooManyTriangles {
                 shape: "the copies",
                 count: triangles,
                 max: MAX_TRIANGLES,
@@ -360,20 +367,20 @@ fn copies(
 
 impl ObjFiles<'_> {
     /// The mesh of an entry's `obj` path.
-    fn load(&self, obj: &str) -> Result<Mesh, SceneError> {
+    fn load(&self, obj: &str) -> Result<Mesh, ObjError> {
         match self {
             Self::Relative(directory) => load_obj(&directory.join(obj)),
             Self::Embedded { directory, files } => {
                 let path = directory.join(obj);
                 match files.iter().find(|(name, _)| *name == obj) {
                     Some((_, text)) => parse_obj(text, &path),
-                    None => Err(SceneError::Io {
+                    None => Err(ObjError::Read(ReadError::Io {
                         path,
                         source: std::io::Error::new(
                             std::io::ErrorKind::NotFound,
                             "no such mesh is embedded in the binary",
                         ),
-                    }),
+                    })),
                 }
             }
         }

@@ -52,9 +52,9 @@
 //! | `target` | a point the camera looks at | c |
 //! | `direction` | the view direction instead of `target` (give at most one of the two) | `target − position` |
 //! | `up` | roughly up; orthogonalised against the view direction, must not be parallel to it | `[0, 1, 0]` |
-//! | `fov` | the vertical field of view, degrees, in (0, 180) | 60 |
-//! | `near`, `far` | the clip distances along the view direction, 0 < near < far | from the depths of the bounds' eight corners along the view direction: far = 1.01 × the farthest; near = the larger of 0.99 × the nearest and far / 1000 (or far / 1000 if that is not below a given far) |
-//! | `image` | `[width, height]` in pixels, each ≥ 1; the aspect ratio is width / height | `[1024, 768]` |
+//! | `fov` | the vertical field of view, degrees, in [0.001, 180) ([`MIN_ANGLE_DEGREES`]) | 60 |
+//! | `near`, `far` | the clip distances along the view direction, 0 < near < far ≤ 10⁶·near ([`MAX_DEPTH_RATIO`]) | from the depths of the bounds' eight corners along the view direction: far = 1.01 × the farthest; near = the larger of 0.99 × the nearest and far / 1000 (or far / 1000 if that is not below a given far) |
+//! | `image` | `[width, height]` in pixels, each in 1..=16384 ([`MAX_IMAGE_SIDE`]); the aspect ratio is width / height | `[1024, 768]` |
 //!
 //! # `[[light]]` (zero or more)
 //! A scene without lights gets the **default sun**: a directional light travelling along
@@ -77,7 +77,7 @@
 //! | `target` | a point the light shines at | c |
 //! | `direction` | the direction it travels instead of `target` (at most one of the two) | `target − position` |
 //! | `up` | orients the light's image; must not be parallel to the direction | +y, or −z if y is the direction's largest component (ties included) |
-//! | `cone` | the full cone angle, degrees, in (0, 180): the light frustum is the perspective frustum with this vertical field of view and aspect 1 | 60 |
+//! | `cone` | the full cone angle, degrees, in [0.001, 180) ([`MIN_ANGLE_DEGREES`]): the light frustum is the perspective frustum with this vertical field of view and aspect 1 | 60 |
 //! | `near`, `far` | along the direction, as the camera's | as the camera's, from the spot's position and direction |
 //!
 //! # `[[mesh]]` (one or more)
@@ -111,7 +111,10 @@
 //! | `chessboard` | `square_size` (0.125), `frame_width` ≥ 0 (0): [`crate::procedural::chess_board`] |
 //!
 //! Sizes, radii, heights, spacings and thicknesses must be finite and > 0. No mesh (one shape, or
-//! an entry's copies together) may exceed [`crate::procedural::MAX_TRIANGLES`] triangles.
+//! an entry's copies together) may exceed [`crate::procedural::MAX_TRIANGLES`] triangles; every
+//! transformed position must lie within ±[`crate::MAX_COORDINATE`], and the merged meshes must
+//! span at least [`crate::MIN_EXTENT`] on some axis (a flat scene, a ground plane alone, is
+//! fine).
 //!
 //! # `[shadow]` (optional table)
 //! Suggestions for the shadow technique, passed on as [`ShadowSettings`]; the `shadow` crate and
@@ -122,16 +125,22 @@
 //! most one of `parameter`, `lambda` and `n`.
 //!
 //! # Errors
-//! Every error names the file. TOML errors (syntax, unknown fields, wrong types, unknown shapes or
-//! light kinds, numbers out of their integer type) are [`SceneError::SceneToml`] with toml's line
+//! Every error is a [`SceneFileError`] naming the file. A file that is not a regular file or is
+//! larger than [`crate::MAX_SCENE_FILE_BYTES`] is refused before it is read
+//! ([`SceneFileError::Read`]). TOML errors (syntax, unknown fields, wrong types, unknown shapes or
+//! light kinds, numbers out of their integer type) are [`SceneFileError::Toml`] with toml's line
 //! and column and the field there; values out of range or inconsistent are
-//! [`SceneError::SceneFile`] naming the field by its path (`camera.near`, `light[0].direction`,
-//! `mesh[2].size[1]`), e.g. `outdoor.toml: camera.near (5) must be below camera.far (1)`; meshes
-//! that cannot be built are [`SceneError::SceneMesh`] wrapping the OBJ or shape error. Meshes are
+//! [`SceneFileError::Field`] naming the field by its path (`camera.near`, `light[0].direction`,
+//! `mesh[2].size[1]`) and the allowed range, e.g.
+//! `outdoor.toml: camera.near (5) must be below camera.far (1)`; meshes that cannot be built are
+//! [`SceneFileError::Obj`], [`SceneFileError::Shape`] or [`SceneFileError::Mesh`], whose
+//! `source()` is the OBJ loader's, the shape's or the mesh's error. Numbers in messages are
+//! shortest round-trip, in scientific notation when very small or large (`1e-300`). Meshes are
 //! built first (the other defaults need their bounds), then the camera, then the lights. Nothing
 //! panics on any input.
 
 mod checks;
+mod error;
 mod meshes;
 mod raw;
 mod toml_error;
@@ -141,13 +150,15 @@ use std::path::Path;
 
 use glam::DVec3;
 
-use crate::error::SceneError;
+use crate::read::{MAX_SCENE_FILE_BYTES, read_bounded};
 #[cfg(doc)]
 use crate::scene::SceneLight;
 use crate::scene::{Scene, ShadowSettings};
 
 use self::checks::{Checker, field};
 use self::raw::{RawScene, RawShadow};
+
+pub use self::error::{SceneFileError, SceneFileProblem};
 
 /// The camera's default vertical field of view, in degrees.
 pub const DEFAULT_FOV_DEGREES: f64 = 60.0;
@@ -175,6 +186,22 @@ pub const DEPTH_MARGIN: f64 = 0.01;
 /// The largest far/near ratio of default near planes: near is at least far / 1000.
 pub const MAX_FAR_NEAR_RATIO: f64 = 1000.0;
 
+/// The largest far/near ratio of a camera or spot light whose near and far the file gives:
+/// 10⁶. Every technique was tried at 2·10⁷ (near 10⁻⁶, far 20 on a unit box on a plane) and
+/// works; at 2·10¹⁰ PSM's post-perspective focus body is flat to f64 ("no hull with an
+/// interior"), at 2·10³¹ the light-space fits overflow. The papers' ratios are 100 to 800.
+pub const MAX_DEPTH_RATIO: f64 = 1e6;
+
+/// The smallest field of view or spot cone, in degrees: 0.001°. The focus body of a narrower
+/// view stops having an interior in f64 (at 10⁻⁸° on a unit box PSM's hull is flat; 10⁻⁶° still
+/// works for every technique, so this leaves a factor of 1000).
+pub const MIN_ANGLE_DEGREES: f64 = 1e-3;
+
+/// The largest image side, in pixels: the rasterizer's largest target side
+/// (`shadowlab_raster::MAX_TARGET_SIZE`, 16384; the command-line tool asserts the two agree), so
+/// that a scene's camera always has an eye pass.
+pub const MAX_IMAGE_SIDE: u32 = 16384;
+
 /// Where the `obj` paths of a scene's mesh entries are read from.
 pub(crate) enum ObjFiles<'a> {
     /// From disk, relative to this directory (the scene file's).
@@ -190,13 +217,24 @@ pub(crate) enum ObjFiles<'a> {
 /// Reads a scene file; `obj` paths are relative to its directory.
 ///
 /// # Errors
-/// [`SceneError::Io`] if the file cannot be read (or is not UTF-8); otherwise as [`parse_scene`].
-pub fn load_scene(path: &Path) -> Result<Scene, SceneError> {
-    let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io {
+/// [`SceneFileError::Read`] if the file cannot be read, is not a regular file or is larger than
+/// [`MAX_SCENE_FILE_BYTES`]; [`SceneFileError::NotUtf8`]; otherwise as [`parse_scene`].
+pub fn load_scene(path: &Path) -> Result<Scene, SceneFileError> {
+    let bytes = read_bounded(
+        path,
+        MAX_SCENE_FILE_BYTES,
+        "a scene file",
+        "MAX_SCENE_FILE_BYTES",
+    )
+    .map_err(SceneFileError::Read)?;
+    let text = std::str::from_utf8(&bytes).map_err(|error| SceneFileError::NotUtf8 {
         path: path.to_owned(),
-        source,
+        line: 1 + bytes[..error.valid_up_to()]
+            .iter()
+            .filter(|&&b| b == b'\n')
+            .count(),
     })?;
-    parse_scene(&text, path)
+    parse_scene(text, path)
 }
 
 /// Reads scene-file text as if it were the file `path`: errors name `path`, the scene's default
@@ -204,14 +242,15 @@ pub fn load_scene(path: &Path) -> Result<Scene, SceneError> {
 /// `path`).
 ///
 /// # Errors
-/// - [`SceneError::SceneToml`]: not TOML, or not the format (unknown field, wrong type, unknown
+/// - [`SceneFileError::Toml`]: not TOML, or not the format (unknown field, wrong type, unknown
 ///   `shape` or `kind`), with the line, column and field;
-/// - [`SceneError::SceneFile`]: a value out of range or inconsistent, naming the field (see the
+/// - [`SceneFileError::Field`]: a value out of range or inconsistent, naming the field (see the
 ///   [module documentation](self) for every rule);
-/// - [`SceneError::SceneMesh`]: an OBJ file that is missing or malformed, a shape with too many
-///   triangles or inconsistent parameters, a transform that overflows;
-/// - [`SceneError::SceneHull`]: a camera or light that overflows `shadowlab-hull`'s checks.
-pub fn parse_scene(text: &str, path: &Path) -> Result<Scene, SceneError> {
+/// - [`SceneFileError::Obj`], [`SceneFileError::Shape`], [`SceneFileError::Mesh`]: an OBJ file
+///   that is missing or malformed, a shape with too many triangles or inconsistent parameters, a
+///   transform that overflows;
+/// - [`SceneFileError::Hull`]: a camera or light that overflows `shadowlab-hull`'s checks.
+pub fn parse_scene(text: &str, path: &Path) -> Result<Scene, SceneFileError> {
     let directory = path.parent().unwrap_or(Path::new(""));
     parse(text, path, &ObjFiles::Relative(directory))
 }
@@ -221,7 +260,7 @@ pub(crate) fn parse(
     text: &str,
     path: &Path,
     obj_files: &ObjFiles<'_>,
-) -> Result<Scene, SceneError> {
+) -> Result<Scene, SceneFileError> {
     let raw: RawScene =
         toml::from_str(text).map_err(|error| toml_error::scene_toml_error(path, text, &error))?;
     let checker = Checker::new(path);
@@ -251,7 +290,7 @@ pub(crate) fn parse(
 }
 
 /// The `[shadow]` table as it is, but for its numbers, which must be finite.
-fn shadow_settings(checker: Checker<'_>, raw: RawShadow) -> Result<ShadowSettings, SceneError> {
+fn shadow_settings(checker: Checker<'_>, raw: RawShadow) -> Result<ShadowSettings, SceneFileError> {
     let finite = |name: &str, value: Option<f64>| {
         value
             .map(|v| checker.finite(&field("shadow", name), v))

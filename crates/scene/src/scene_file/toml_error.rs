@@ -1,4 +1,4 @@
-//! toml's errors as [`SceneError::SceneToml`]: the file, the line and column, and the field at the
+//! toml's errors as [`SceneFileError::Toml`]: the file, the line and column, and the field at the
 //! error's position (`mesh[1].obk`), found by walking the spanned document that toml parses.
 
 use std::ops::Range;
@@ -6,10 +6,10 @@ use std::path::Path;
 
 use toml::de::{DeTable, DeValue};
 
-use crate::error::SceneError;
+use super::error::SceneFileError;
 
-/// The [`SceneError::SceneToml`] for toml's error about `text`, the contents of `path`.
-pub(super) fn scene_toml_error(path: &Path, text: &str, error: &toml::de::Error) -> SceneError {
+/// The [`SceneFileError::Toml`] for toml's error about `text`, the contents of `path`.
+pub(super) fn scene_toml_error(path: &Path, text: &str, error: &toml::de::Error) -> SceneFileError {
     let span = error.span();
     let position = span.as_ref().map(|span| line_column(text, span.start));
     // Only deserialisation errors are inside a document that parses; a syntax error has no field.
@@ -17,7 +17,7 @@ pub(super) fn scene_toml_error(path: &Path, text: &str, error: &toml::de::Error)
         let document = DeTable::parse(text).ok()?;
         field_at(document.get_ref(), span.start)
     });
-    SceneError::SceneToml {
+    SceneFileError::Toml {
         path: path.to_owned(),
         position,
         field,

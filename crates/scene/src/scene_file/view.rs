@@ -5,14 +5,15 @@ use glam::DVec3;
 use shadowlab_hull::{HullError, Perspective, ViewPose};
 
 use super::checks::{Checker, field, named};
+use super::error::{SceneFileError, SceneFileProblem};
 use super::raw::{LightKind, RawCamera, RawLight};
 use super::{
     DEFAULT_CONE_DEGREES, DEFAULT_FOV_DEGREES, DEFAULT_IMAGE, DEFAULT_SUN_DIRECTION, DEFAULT_UP,
-    DEFAULT_VIEW_FROM, DEPTH_MARGIN, MAX_FAR_NEAR_RATIO,
+    DEFAULT_VIEW_FROM, DEPTH_MARGIN, MAX_DEPTH_RATIO, MAX_FAR_NEAR_RATIO,
 };
 use crate::bounds::Bounds;
-use crate::error::{SceneError, SceneFileProblem};
 use crate::normals;
+use crate::number::Shown;
 use crate::scene::{Camera, SceneLight};
 
 /// The camera of `[camera]`, with defaults derived from the scene's bounds.
@@ -20,7 +21,7 @@ pub(super) fn camera(
     checker: Checker<'_>,
     raw: &RawCamera,
     bounds: &Bounds,
-) -> Result<Camera, SceneError> {
+) -> Result<Camera, SceneFileError> {
     let fov_y = match raw.fov {
         Some(degrees) => checker.angle("camera.fov", degrees)?,
         None => DEFAULT_FOV_DEGREES.to_radians(),
@@ -28,7 +29,7 @@ pub(super) fn camera(
     let [width, height] = match raw.image {
         Some(image) => {
             for (index, &size) in image.iter().enumerate() {
-                checker.at_least(&format!("camera.image[{index}]"), size, 1, "at least 1")?;
+                checker.image_side(&format!("camera.image[{index}]"), size)?;
             }
             image
         }
@@ -87,7 +88,7 @@ pub(super) fn camera(
 
 /// The light that a scene without `[[light]]` entries gets: a directional light travelling along
 /// [`DEFAULT_SUN_DIRECTION`], exactly as a `[[light]]` without fields.
-pub(super) fn default_sun(checker: Checker<'_>) -> Result<SceneLight, SceneError> {
+pub(super) fn default_sun(checker: Checker<'_>) -> Result<SceneLight, SceneFileError> {
     directional(checker, "light", DEFAULT_SUN_DIRECTION.to_array())
 }
 
@@ -96,7 +97,7 @@ fn directional(
     checker: Checker<'_>,
     prefix: &str,
     direction: [f64; 3],
-) -> Result<SceneLight, SceneError> {
+) -> Result<SceneLight, SceneFileError> {
     let direction = checker.direction(&field(prefix, "direction"), direction)?;
     Ok(SceneLight::Directional {
         to_light: -direction,
@@ -109,7 +110,7 @@ pub(super) fn light(
     index: usize,
     raw: &RawLight,
     bounds: &Bounds,
-) -> Result<SceneLight, SceneError> {
+) -> Result<SceneLight, SceneFileError> {
     let prefix = format!("light[{index}]");
     match raw.kind.unwrap_or_default() {
         LightKind::Directional => {
@@ -142,7 +143,7 @@ fn spot(
     prefix: &str,
     raw: &RawLight,
     bounds: &Bounds,
-) -> Result<SceneLight, SceneError> {
+) -> Result<SceneLight, SceneFileError> {
     let cone = match raw.cone {
         Some(degrees) => checker.angle(&field(prefix, "cone"), degrees)?,
         None => DEFAULT_CONE_DEGREES.to_radians(),
@@ -204,7 +205,7 @@ struct Aim<'a> {
 impl Aim<'_> {
     /// The view (or light) direction: `direction` normalised, or `target − position` (not
     /// normalised) with the target defaulting to the centre of the scene's bounds.
-    fn forward(&self, checker: Checker<'_>, bounds: &Bounds) -> Result<DVec3, SceneError> {
+    fn forward(&self, checker: Checker<'_>, bounds: &Bounds) -> Result<DVec3, SceneFileError> {
         if let Some(direction) = self.direction {
             return checker.direction(&field(self.prefix, "direction"), direction);
         }
@@ -248,7 +249,7 @@ fn pose(
     forward: DVec3,
     (up, up_given): (DVec3, bool),
     other: &'static str,
-) -> Result<ViewPose, SceneError> {
+) -> Result<ViewPose, SceneFileError> {
     ViewPose::look_to(aim.position, forward, up).map_err(|error| match error {
         HullError::ParallelVectors { .. } => checker.error(
             named(field(aim.prefix, "up"), up_given),
@@ -264,23 +265,16 @@ fn pose(
 
 /// A default position: the centre c of the scene's bounds plus `distance · normalize(from)`, with
 /// `distance = R / sin(half_angle)`, R half the bounds' diagonal: from there the bounding sphere
-/// just fills a cone of that half angle around the direction toward c.
+/// just fills a cone of that half angle around the direction toward c. R > 0: a scene spans at
+/// least [`crate::MIN_EXTENT`].
 fn default_viewpoint(
     checker: Checker<'_>,
     field: &str,
     bounds: &Bounds,
     from: DVec3,
     half_angle: f64,
-) -> Result<DVec3, SceneError> {
+) -> Result<DVec3, SceneFileError> {
     let radius = 0.5 * bounds.diagonal();
-    if radius == 0.0 {
-        return Err(checker.error(
-            field,
-            SceneFileProblem::NoDefault {
-                reason: "the scene's bounds are a single point",
-            },
-        ));
-    }
     let position = bounds.centre() + from.normalize() * (radius / half_angle.sin());
     if position.is_finite() {
         Ok(position)
@@ -298,14 +292,14 @@ fn default_viewpoint(
 /// derived from the depths of the corners of the scene's bounds along the view direction:
 /// far = farthest·(1 + [`DEPTH_MARGIN`]), near = max(nearest·(1 − [`DEPTH_MARGIN`]),
 /// far / [`MAX_FAR_NEAR_RATIO`]); a derived near that is not below a given far is
-/// far / [`MAX_FAR_NEAR_RATIO`].
+/// far / [`MAX_FAR_NEAR_RATIO`]. A given near must be at least far / [`MAX_DEPTH_RATIO`].
 fn depth_range(
     checker: Checker<'_>,
     prefix: &str,
     (near, far): (Option<f64>, Option<f64>),
     bounds: &Bounds,
     pose: &ViewPose,
-) -> Result<(f64, f64), SceneError> {
+) -> Result<(f64, f64), SceneFileError> {
     let near_field = field(prefix, "near");
     let far_field = field(prefix, "far");
     let given_near = near.map(|n| checker.positive(&near_field, n)).transpose()?;
@@ -333,18 +327,31 @@ fn depth_range(
         let tight = (nearest * (1.0 - DEPTH_MARGIN)).max(loose);
         if tight < far { tight } else { loose }
     });
-    if near < far {
-        Ok((near, far))
-    } else {
-        Err(checker.error(
+    if near >= far {
+        return Err(checker.error(
             near_field,
             SceneFileProblem::NotBelow {
                 value: near,
                 other: named(far_field, given_far.is_some()),
                 other_value: far,
             },
-        ))
+        ));
     }
+    if far / near > MAX_DEPTH_RATIO {
+        return Err(checker.error(
+            near_field,
+            SceneFileProblem::OutOfRange {
+                value: near,
+                requirement: format!(
+                    "at least {} / {} (MAX_DEPTH_RATIO) = {}",
+                    named(far_field, given_far.is_some()),
+                    Shown(MAX_DEPTH_RATIO),
+                    Shown(far / MAX_DEPTH_RATIO)
+                ),
+            },
+        ));
+    }
+    Ok((near, far))
 }
 
 /// The eight corners of a box.

@@ -3,7 +3,9 @@
 use std::f64::consts::FRAC_PI_2;
 
 use glam::{DAffine3, DMat3, DQuat, DVec3};
-use shadowlab_scene::{DEFAULT_GROUP_NAME, FALLBACK_NORMAL, Mesh, SceneError, procedural};
+use shadowlab_scene::{
+    Bounds, DEFAULT_GROUP_NAME, FALLBACK_NORMAL, MAX_COORDINATE, Mesh, MeshError, procedural,
+};
 
 use crate::support::{assert_close, assert_unit_normals};
 
@@ -62,40 +64,41 @@ fn degenerate_and_unused_vertices_get_the_fallback_normal() {
 
 #[test]
 fn normals_survive_extreme_scales() {
-    for scale in [1e-300, 1e-160, 1.0, 1e150, 1e300] {
+    for scale in [1e-300, 1e-160, 1.0, 1e20, MAX_COORDINATE] {
         let positions = [DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::NEG_X].map(|p| p * scale);
         let mesh = Mesh::new(positions.to_vec(), vec![[0, 1, 2], [0, 2, 3]]).unwrap();
         assert_eq!(mesh.normals(), [DVec3::Z; 4], "scale {scale}");
     }
-    // Edges that would overflow if subtracted unscaled.
+    // Positions beyond MAX_COORDINATE (whose edges would overflow) are refused.
     let huge = f64::MAX / 2.0;
-    let mesh = Mesh::new(
-        vec![
-            DVec3::new(-huge, -huge, 0.0),
-            DVec3::new(huge, -huge, 0.0),
-            DVec3::new(0.0, huge, 0.0),
-        ],
-        vec![[0, 1, 2]],
-    )
-    .unwrap();
-    assert_eq!(mesh.normals(), [DVec3::Z; 3]);
+    assert!(matches!(
+        Mesh::new(
+            vec![
+                DVec3::new(-huge, -huge, 0.0),
+                DVec3::new(huge, -huge, 0.0),
+                DVec3::new(0.0, huge, 0.0),
+            ],
+            vec![[0, 1, 2]],
+        ),
+        Err(MeshError::PositionOutOfRange { vertex: 0, .. })
+    ));
 }
 
 #[test]
 fn bad_geometry_is_rejected_with_the_culprit_named() {
     assert!(matches!(
         Mesh::new(vec![DVec3::ZERO], vec![]),
-        Err(SceneError::NoTriangles)
+        Err(MeshError::NoTriangles)
     ));
     let nan = DVec3::new(0.0, f64::NAN, 0.0);
     assert!(matches!(
         Mesh::new(vec![DVec3::ZERO, DVec3::X, nan], vec![[0, 1, 2]]),
-        Err(SceneError::NonFinitePosition { vertex: 2 })
+        Err(MeshError::NonFinitePosition { vertex: 2 })
     ));
     let infinite = DVec3::new(f64::INFINITY, 0.0, 0.0);
     assert!(matches!(
         Mesh::new(vec![infinite, DVec3::X, DVec3::Y], vec![[0, 1, 2]]),
-        Err(SceneError::NonFinitePosition { vertex: 0 })
+        Err(MeshError::NonFinitePosition { vertex: 0 })
     ));
     let error = Mesh::new(
         vec![DVec3::ZERO, DVec3::X, DVec3::Y],
@@ -104,7 +107,7 @@ fn bad_geometry_is_rejected_with_the_culprit_named() {
     .unwrap_err();
     assert!(matches!(
         error,
-        SceneError::IndexOutOfRange {
+        MeshError::IndexOutOfRange {
             triangle: 1,
             index: 3,
             vertex_count: 3
@@ -135,7 +138,7 @@ fn given_normals_are_normalised_and_checked() {
     assert_unit_normals(&mesh);
     assert!(matches!(
         Mesh::with_normals(positions.clone(), vec![DVec3::Z; 2], vec![[0, 1, 2]]),
-        Err(SceneError::NormalCountMismatch {
+        Err(MeshError::NormalCountMismatch {
             positions: 3,
             normals: 2
         })
@@ -146,7 +149,7 @@ fn given_normals_are_normalised_and_checked() {
             vec![DVec3::Z, DVec3::ZERO, DVec3::Z],
             vec![[0, 1, 2]]
         ),
-        Err(SceneError::InvalidNormal { vertex: 1 })
+        Err(MeshError::InvalidNormal { vertex: 1 })
     ));
     assert!(matches!(
         Mesh::with_normals(
@@ -154,7 +157,7 @@ fn given_normals_are_normalised_and_checked() {
             vec![DVec3::Z, DVec3::Z, DVec3::splat(f64::NAN)],
             vec![[0, 1, 2]]
         ),
-        Err(SceneError::InvalidNormal { vertex: 2 })
+        Err(MeshError::InvalidNormal { vertex: 2 })
     ));
 }
 
@@ -183,16 +186,11 @@ fn bounds_cover_every_position() {
     assert!(mesh.positions().iter().all(|&p| bounds.contains(p)));
     assert!(!bounds.contains(DVec3::new(4.5, 0.0, 0.0)));
     // The centre of huge bounds does not overflow.
-    let huge = Mesh::new(
-        vec![
-            DVec3::splat(f64::MAX),
-            DVec3::splat(f64::MAX),
-            DVec3::splat(-f64::MAX),
-        ],
-        vec![[0, 1, 2]],
-    )
-    .unwrap();
-    assert_eq!(huge.bounds().centre(), DVec3::ZERO);
+    let huge = Bounds {
+        min: DVec3::splat(-f64::MAX),
+        max: DVec3::splat(f64::MAX),
+    };
+    assert_eq!(huge.centre(), DVec3::ZERO);
 }
 
 #[test]
@@ -210,14 +208,14 @@ fn groups_are_validated() {
     assert_eq!(named.group_count(), 2);
     assert!(matches!(
         quad.clone().with_groups(vec![0], vec!["a".into()]),
-        Err(SceneError::GroupCountMismatch {
+        Err(MeshError::GroupCountMismatch {
             triangles: 2,
             groups: 1
         })
     ));
     assert!(matches!(
         quad.with_groups(vec![0, 2], vec!["a".into(), "b".into()]),
-        Err(SceneError::GroupOutOfRange {
+        Err(MeshError::GroupOutOfRange {
             triangle: 1,
             group: 2,
             group_count: 2
@@ -287,18 +285,35 @@ fn bad_transforms_are_errors() {
     let singular = DAffine3::from_scale(DVec3::new(1.0, 0.0, 1.0));
     assert!(matches!(
         mesh.try_transformed(&singular),
-        Err(SceneError::InvalidTransform { .. })
+        Err(MeshError::InvalidTransform { .. })
     ));
     let nan = DAffine3::from_translation(DVec3::new(f64::NAN, 0.0, 0.0));
     assert!(matches!(
         mesh.try_transformed(&nan),
-        Err(SceneError::InvalidTransform { .. })
+        Err(MeshError::InvalidTransform { .. })
     ));
     let overflowing = DAffine3::from_translation(DVec3::splat(f64::MAX));
-    let far = mesh.transformed(&DAffine3::from_translation(DVec3::splat(f64::MAX / 2.0)));
     assert!(matches!(
-        far.try_transformed(&overflowing),
-        Err(SceneError::InvalidTransform { .. })
+        mesh.try_transformed(&overflowing),
+        Err(MeshError::PositionOutOfRange { vertex: 0, .. })
+    ));
+    // Beyond MAX_COORDINATE, but finite: out of range, named with the vertex and the value.
+    let beyond = DAffine3::from_translation(DVec3::new(0.0, 2.0 * MAX_COORDINATE, 0.0));
+    assert_eq!(
+        mesh.try_transformed(&beyond),
+        Err(MeshError::PositionOutOfRange {
+            vertex: 0,
+            value: 2.0 * MAX_COORDINATE
+        })
+    );
+    let to_the_limit = DAffine3::from_translation(DVec3::new(0.0, MAX_COORDINATE - 1.0, 0.0));
+    assert!(mesh.try_transformed(&to_the_limit).is_ok());
+    assert!(matches!(
+        Mesh::new(
+            vec![DVec3::ZERO, DVec3::X, DVec3::new(0.0, 0.0, -1e41)],
+            vec![[0, 1, 2]]
+        ),
+        Err(MeshError::PositionOutOfRange { vertex: 2, .. })
     ));
     assert!(
         mesh.try_transformed(&DAffine3::from_rotation_z(FRAC_PI_2))
@@ -339,9 +354,6 @@ fn merging_keeps_parts_apart() {
         );
     }
     assert_eq!(merged.bounds(), ground.bounds().union(&board.bounds()));
-    assert!(matches!(
-        Mesh::try_merged(&[]),
-        Err(SceneError::NoTriangles)
-    ));
+    assert!(matches!(Mesh::try_merged(&[]), Err(MeshError::NoTriangles)));
     assert_eq!(Mesh::merged(std::slice::from_ref(&ground)), ground);
 }

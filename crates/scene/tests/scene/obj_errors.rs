@@ -1,6 +1,6 @@
 //! Every class of malformed OBJ file is an error naming the file and the line, never a panic.
 
-use shadowlab_scene::{ObjElement, ObjProblem, SceneError, load_obj};
+use shadowlab_scene::{ObjElement, ObjError, ObjProblem, ReadError, load_obj};
 
 use crate::support::ObjDir;
 
@@ -10,9 +10,9 @@ fn obj_error(text: &str) -> (usize, ObjProblem) {
     let dir = ObjDir::new();
     let path = dir.write("bad.obj", text);
     match load_obj(&path) {
-        Err(error @ SceneError::Obj { .. }) => {
+        Err(error @ ObjError::Line { .. }) => {
             let message = error.to_string();
-            let SceneError::Obj {
+            let ObjError::Line {
                 path: named,
                 line,
                 problem,
@@ -38,7 +38,7 @@ fn missing_file_names_the_path() {
         .write("present.obj", TRIANGLE)
         .with_file_name("absent.obj");
     let error = load_obj(&path).unwrap_err();
-    assert!(matches!(&error, SceneError::Io { path: p, .. } if *p == path));
+    assert!(matches!(&error, ObjError::Read(ReadError::Io { path: p, .. }) if *p == path));
     assert!(
         error
             .to_string()
@@ -52,7 +52,7 @@ fn file_without_faces() {
     let dir = ObjDir::new();
     let path = dir.write("empty.obj", "# nothing\nv 0 0 0\nl 1 1\n");
     let error = load_obj(&path).unwrap_err();
-    assert!(matches!(&error, SceneError::ObjWithoutFaces { path: p } if *p == path));
+    assert!(matches!(&error, ObjError::NoFaces { path: p } if *p == path));
     assert_eq!(error.to_string(), format!("{}: no faces", path.display()));
 }
 
@@ -350,11 +350,103 @@ fn invalid_utf8_names_its_line() {
     let path = dir.write("latin1.obj", "");
     std::fs::write(&path, b"v 0 0 0\n# caf\xe9\nv 1 0 0\n").unwrap();
     match load_obj(&path) {
-        Err(SceneError::Obj {
+        Err(ObjError::Line {
             line: 2,
             problem: ObjProblem::NotUtf8,
             ..
         }) => {}
         other => panic!("{other:?}"),
+    }
+}
+
+#[test]
+fn coordinates_beyond_the_limit_name_their_line_and_the_limit() {
+    assert_eq!(
+        obj_error("v 0 0 0\nv 1e308 0 0\nv 0 1 0\nf 1 2 3\n"),
+        (
+            2,
+            ObjProblem::CoordinateOutOfRange {
+                token: "1e308".to_owned()
+            }
+        )
+    );
+    // After the division by w.
+    assert_eq!(
+        obj_error("v 0 0 0\nv 1 0 0\nv 0 1e30 0 1e-20\nf 1 2 3\n"),
+        (
+            3,
+            ObjProblem::CoordinateOutOfRange {
+                token: "1e30/1e-20".to_owned()
+            }
+        )
+    );
+    // At the limit itself, the file loads.
+    let dir = ObjDir::new();
+    let path = dir.write("large.obj", "v 0 0 0\nv 1e40 0 0\nv 0 -1e40 0\nf 1 2 3\n");
+    assert!(load_obj(&path).is_ok());
+    let dir = ObjDir::new();
+    let path = dir.write("bad.obj", "v 0 0 0\nv 1e308 0 0\nv 0 1 0\nf 1 2 3\n");
+    let message = load_obj(&path).unwrap_err().to_string();
+    assert!(
+        message.contains(":2: `v`: `1e308` is beyond ±1e40 (MAX_COORDINATE)"),
+        "{message}"
+    );
+}
+
+#[test]
+fn positions_without_extent_are_degenerate() {
+    let dir = ObjDir::new();
+    for text in [
+        "v 0 0 0\nv 1e-310 0 0\nv 0 1e-310 1e-310\nf 1 2 3\n",
+        "v 5 5 5\nv 5 5 5\nv 5 5 5\nf 1 2 3\n",
+    ] {
+        let path = dir.write("tiny.obj", text);
+        let error = load_obj(&path).unwrap_err();
+        assert!(
+            matches!(&error, ObjError::DegenerateExtent { path: p, .. } if *p == path),
+            "{error:?}"
+        );
+        let message = error.to_string();
+        assert!(
+            message.contains("a mesh must span at least 1e-40 (MIN_EXTENT)"),
+            "{message}"
+        );
+    }
+    let path = dir.write("small.obj", "v 0 0 0\nv 1e-40 0 0\nv 0 1e-40 0\nf 1 2 3\n");
+    assert!(load_obj(&path).is_ok(), "an extent of MIN_EXTENT is enough");
+}
+
+#[test]
+fn special_files_are_refused_without_reading_them() {
+    let dir = ObjDir::new();
+    let error = load_obj(dir.path()).unwrap_err();
+    assert!(
+        matches!(
+            &error,
+            ObjError::Read(ReadError::NotRegularFile {
+                kind: "a directory",
+                ..
+            })
+        ),
+        "{error:?}"
+    );
+    #[cfg(unix)]
+    {
+        let zero = std::path::Path::new("/dev/zero");
+        let error = load_obj(zero).unwrap_err();
+        assert_eq!(
+            error.to_string(),
+            "/dev/zero: is a character device, not a regular file; only regular files are read as \
+             input"
+        );
+        let fifo = dir.path().join("fifo.obj");
+        let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+        if made.is_ok_and(|status| status.success()) {
+            // Opening a FIFO would block until a writer came: it must be refused before that.
+            let error = load_obj(&fifo).unwrap_err();
+            assert!(error.to_string().contains("is a FIFO"), "{error}");
+        } else {
+            eprintln!("skipped the FIFO case: mkfifo is not available");
+        }
     }
 }

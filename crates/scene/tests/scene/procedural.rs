@@ -8,7 +8,7 @@ use shadowlab_scene::procedural::{
     BAR_LATTICE_GROUPS, CHESS_DARK, CHESS_FRAME, CHESS_LIGHT, MAX_TRIANGLES, bar_lattice,
     chess_board, cuboid, cylinder, plane, sphere,
 };
-use shadowlab_scene::{Mesh, SceneError};
+use shadowlab_scene::{Mesh, ShapeError};
 
 use crate::support::{assert_close, assert_unit_normals, first_open_edge};
 
@@ -243,8 +243,8 @@ fn bar_lattice_is_a_set_of_closed_bars() {
 
 #[test]
 fn bad_parameters_are_named() {
-    let parameter = |result: Result<Mesh, SceneError>| match result {
-        Err(SceneError::InvalidParameter { parameter, .. }) => parameter,
+    let parameter = |result: Result<Mesh, ShapeError>| match result {
+        Err(ShapeError::InvalidParameter { parameter, .. }) => parameter,
         other => panic!("expected InvalidParameter, got {other:?}"),
     };
     assert_eq!(parameter(plane(0.0, 1.0, 1)), "size_x");
@@ -276,7 +276,7 @@ fn bad_parameters_are_named() {
         (bar_lattice([1000; 3], 1.0, 0.1), "bar_lattice"),
     ] {
         match result {
-            Err(SceneError::TooManyTriangles {
+            Err(ShapeError::TooManyTriangles {
                 shape: s,
                 count,
                 max,

@@ -3,7 +3,7 @@
 
 use glam::{DAffine3, DQuat, DVec3};
 use proptest::prelude::*;
-use shadowlab_scene::{Mesh, SceneError, load_obj, procedural};
+use shadowlab_scene::{Mesh, ObjError, load_obj, procedural};
 
 use crate::procedural::{assert_bars_closed, assert_closed_convex};
 use crate::support::{ObjDir, assert_close, assert_unit_normals, config, first_open_edge};
@@ -207,8 +207,8 @@ proptest! {
                 assert_unit_normals(&mesh);
                 prop_assert!(mesh.positions().iter().all(|p| p.is_finite()));
             }
-            Err(SceneError::Obj { line, .. }) => prop_assert!(line >= 1 && line <= lines.len() + 5),
-            Err(SceneError::ObjWithoutFaces { .. }) => {}
+            Err(ObjError::Line { line, .. }) => prop_assert!(line >= 1 && line <= lines.len() + 5),
+            Err(ObjError::NoFaces { .. }) => {}
             Err(other) => prop_assert!(false, "unexpected error {other}"),
         }
     }

@@ -6,7 +6,8 @@ use std::path::PathBuf;
 use glam::DVec3;
 use shadowlab_hull::HullError;
 use shadowlab_scene::{
-    ObjProblem, SceneError, SceneFileProblem, builtin_scene, load_scene, parse_scene,
+    BuiltinSceneError, MeshError, ObjError, ObjProblem, ReadError, SceneFileError,
+    SceneFileProblem, ShapeError, builtin_scene, load_scene, parse_scene,
 };
 
 use crate::support::ObjDir;
@@ -16,7 +17,7 @@ const BOX: &str = "[[mesh]]\nshape = \"box\"\n";
 
 /// Loads `text` from `bad.toml` (next to `files`) and returns the error, its message, and the
 /// path; checks that the message starts with the path.
-fn scene_error_with(text: &str, files: &[(&str, &str)]) -> (SceneError, String, PathBuf) {
+fn scene_error_with(text: &str, files: &[(&str, &str)]) -> (SceneFileError, String, PathBuf) {
     let dir = ObjDir::new();
     for (name, contents) in files {
         dir.write(name, contents);
@@ -36,16 +37,16 @@ fn scene_error_with(text: &str, files: &[(&str, &str)]) -> (SceneError, String, 
     }
 }
 
-fn scene_error(text: &str) -> (SceneError, String, PathBuf) {
+fn scene_error(text: &str) -> (SceneFileError, String, PathBuf) {
     scene_error_with(text, &[])
 }
 
-/// The field and problem of a [`SceneError::SceneFile`]; checks that the message is
+/// The field and problem of a [`SceneFileError::Field`]; checks that the message is
 /// `path: field problem`.
 fn field_error(text: &str) -> (String, SceneFileProblem) {
     match scene_error(text) {
         (
-            SceneError::SceneFile {
+            SceneFileError::Field {
                 field,
                 problem,
                 path: named,
@@ -68,15 +69,15 @@ fn field_error(text: &str) -> (String, SceneFileProblem) {
 /// The message of a field error, without the path.
 fn field_message(text: &str) -> String {
     let (error, message, path) = scene_error(text);
-    assert!(matches!(error, SceneError::SceneFile { .. }), "{error:?}");
+    assert!(matches!(error, SceneFileError::Field { .. }), "{error:?}");
     message[path.display().to_string().len() + 2..].to_owned()
 }
 
-/// The position, field and message of a [`SceneError::SceneToml`].
+/// The position, field and message of a [`SceneFileError::Toml`].
 fn toml_error(text: &str) -> (Option<(usize, usize)>, Option<String>, String) {
     match scene_error(text) {
         (
-            SceneError::SceneToml {
+            SceneFileError::Toml {
                 position,
                 field,
                 message,
@@ -296,20 +297,20 @@ fn near_and_far() {
 
 #[test]
 fn fields_of_view_and_cones() {
-    for fov in ["0", "180", "200", "-10"] {
+    for fov in ["0", "180", "200", "-10", "1e-9", "0.000999"] {
         let (field, problem) = field_error(&format!("{BOX}[camera]\nfov = {fov}\n"));
         assert_eq!(field, "camera.fov");
         assert_eq!(
             problem,
             SceneFileProblem::OutOfRange {
                 value: fov.parse().unwrap(),
-                requirement: "in (0, 180) degrees",
+                requirement: "in [0.001, 180) degrees (MIN_ANGLE_DEGREES)".to_owned(),
             }
         );
     }
     assert_eq!(
         field_message(&format!("{BOX}[[light]]\nkind = \"spot\"\ncone = 180\n")),
-        "light[0].cone (180) must be in (0, 180) degrees"
+        "light[0].cone (180) must be in [0.001, 180) degrees (MIN_ANGLE_DEGREES)"
     );
 }
 
@@ -460,12 +461,17 @@ fn sizes_counts_and_scales() {
         (
             "[camera]\nimage = [0, 768]",
             "camera.image[0]",
-            "at least 1",
+            "in 1..=16384 pixels (MAX_IMAGE_SIDE)",
+        ),
+        (
+            "[camera]\nimage = [16385, 768]",
+            "camera.image[0]",
+            "in 1..=16384 pixels (MAX_IMAGE_SIDE)",
         ),
         (
             "[camera]\nimage = [1024, 0]",
             "camera.image[1]",
-            "at least 1",
+            "in 1..=16384 pixels (MAX_IMAGE_SIDE)",
         ),
     ];
     for (text, expected, requirement) in cases {
@@ -477,7 +483,7 @@ fn sizes_counts_and_scales() {
         let (field, problem) = field_error(&text);
         assert_eq!(field, expected, "{text}");
         assert!(
-            matches!(problem, SceneFileProblem::OutOfRange { requirement: r, .. } if r == requirement),
+            matches!(&problem, SceneFileProblem::OutOfRange { requirement: r, .. } if r == requirement),
             "{text}: {problem:?}"
         );
     }
@@ -501,13 +507,13 @@ fn rules_between_shape_parameters_are_procedural_errors_of_the_entry() {
     let (error, message, path) = scene_error(&format!(
         "{BOX}[[mesh]]\nshape = \"lattice\"\nspacing = 1\nthickness = 2\n"
     ));
-    let SceneError::SceneMesh { field, source, .. } = &error else {
+    let SceneFileError::Shape { field, source, .. } = &error else {
         panic!("{error:?}");
     };
     assert_eq!(field, "mesh[1]");
     assert!(matches!(
-        **source,
-        SceneError::InvalidParameter {
+        *source,
+        ShapeError::InvalidParameter {
             parameter: "thickness",
             ..
         }
@@ -520,19 +526,19 @@ fn rules_between_shape_parameters_are_procedural_errors_of_the_entry() {
         )
     );
     let (error, ..) = scene_error("[[mesh]]\nshape = \"lattice\"\ncells = [0, 0, 0]\n");
-    assert!(matches!(error, SceneError::SceneMesh { .. }), "{error:?}");
+    assert!(matches!(error, SceneFileError::Shape { .. }), "{error:?}");
     // Too many triangles: for one shape, and for an entry's copies together.
     let (error, ..) = scene_error("[[mesh]]\nshape = \"sphere\"\nsegments = 4294967295\n");
     assert!(
-        matches!(&error, SceneError::SceneMesh { field, source, .. }
-            if field == "mesh[0]" && matches!(**source, SceneError::TooManyTriangles { .. })),
+        matches!(&error, SceneFileError::Shape { field, source, .. }
+            if field == "mesh[0]" && matches!(source, ShapeError::TooManyTriangles { .. })),
         "{error:?}"
     );
     let (error, message, _) =
         scene_error("[[mesh]]\nshape = \"box\"\ncopies = 4294967295\nstep = [1, 0, 0]\n");
     assert!(
-        matches!(&error, SceneError::SceneMesh { field, source, .. }
-            if field == "mesh[0].copies" && matches!(**source, SceneError::TooManyTriangles { .. })),
+        matches!(&error, SceneFileError::Shape { field, source, .. }
+            if field == "mesh[0].copies" && matches!(source, ShapeError::TooManyTriangles { .. })),
         "{error:?}"
     );
     assert!(message.contains("51539607540 triangles"), "{message}");
@@ -540,9 +546,20 @@ fn rules_between_shape_parameters_are_procedural_errors_of_the_entry() {
     let (error, ..) =
         scene_error("[[mesh]]\nshape = \"box\"\nsize = [10, 10, 10]\nscale = 1e308\n");
     assert!(
-        matches!(&error, SceneError::SceneMesh { field, source, .. }
-            if field == "mesh[0]" && matches!(**source, SceneError::InvalidTransform { .. })),
+        matches!(&error, SceneFileError::Mesh { field, source, .. }
+            if field == "mesh[0]" && matches!(source, MeshError::InvalidTransform { .. })),
         "{error:?}"
+    );
+    // A transform that moves positions beyond MAX_COORDINATE, named with the limit.
+    let (error, message, _) = scene_error("[[mesh]]\nshape = \"box\"\nscale = 1e60\n");
+    assert!(
+        matches!(&error, SceneFileError::Mesh { field, source, .. }
+            if field == "mesh[0]" && matches!(source, MeshError::PositionOutOfRange { .. })),
+        "{error:?}"
+    );
+    assert!(
+        message.contains("beyond ±1e40 (MAX_COORDINATE)"),
+        "{message}"
     );
 }
 
@@ -608,12 +625,12 @@ fn fields_that_do_not_apply() {
 fn obj_files_that_are_missing_or_malformed() {
     let (error, message, path) =
         scene_error("[[mesh]]\nshape = \"box\"\n[[mesh]]\nobj = \"gone.obj\"\n");
-    let SceneError::SceneMesh { field, source, .. } = &error else {
+    let SceneFileError::Obj { field, source, .. } = &error else {
         panic!("{error:?}");
     };
     assert_eq!(field, "mesh[1].obj");
     let missing = path.with_file_name("gone.obj");
-    assert!(matches!(&**source, SceneError::Io { path, .. } if *path == missing));
+    assert!(matches!(&**source, ObjError::Read(ReadError::Io { path, .. }) if *path == missing));
     assert!(
         message.starts_with(&format!(
             "{}: mesh[1].obj: {}: ",
@@ -628,10 +645,10 @@ fn obj_files_that_are_missing_or_malformed() {
         "[[mesh]]\nobj = \"bad.obj\"\n",
         &[("bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 nan\nf 1 2 3\n")],
     );
-    let SceneError::SceneMesh { source, .. } = &error else {
+    let SceneFileError::Obj { source, .. } = &error else {
         panic!("{error:?}");
     };
-    let SceneError::Obj { line, problem, .. } = &**source else {
+    let ObjError::Line { line, problem, .. } = &**source else {
         panic!("{source:?}");
     };
     assert_eq!(*line, 3);
@@ -648,20 +665,17 @@ fn obj_files_that_are_missing_or_malformed() {
 
 #[test]
 fn defaults_that_cannot_be_derived() {
-    // Every vertex at one point: the bounds have no size, so there is no default viewpoint.
-    let point = "v 1 1 1\nv 1 1 1\nv 1 1 1\nf 1 2 3\n";
-    let (error, message, path) =
-        scene_error_with("[[mesh]]\nobj = \"point.obj\"\n", &[("point.obj", point)]);
+    // The camera looks away from the scene: there is no default far plane.
+    let (error, message, path) = scene_error(&format!(
+        "{BOX}[camera]\nposition = [0, 0, 10]\ndirection = [0, 0, 1]\n"
+    ));
     assert!(
-        matches!(&error, SceneError::SceneFile { field, problem: SceneFileProblem::NoDefault { .. }, .. }
-            if field == "camera.position"),
+        matches!(&error, SceneFileError::Field { field, problem: SceneFileProblem::NoDefault { .. }, .. }
+            if field == "camera.far"),
         "{error:?}"
     );
     assert!(
-        message.starts_with(&format!(
-            "{}: camera.position has no default: ",
-            path.display()
-        )),
+        message.starts_with(&format!("{}: camera.far has no default: ", path.display())),
         "{message}"
     );
 }
@@ -672,7 +686,7 @@ fn values_that_overflow_are_hull_errors_of_the_camera() {
         "{BOX}[camera]\nposition = [1e308, 0, 0]\ntarget = [-1e308, 0, 0]\n"
     ));
     assert!(
-        matches!(&error, SceneError::SceneHull { field, source: HullError::NonFinite { .. }, .. }
+        matches!(&error, SceneFileError::Hull { field, source: HullError::NonFinite { .. }, .. }
             if field == "camera"),
         "{error:?}"
     );
@@ -684,13 +698,35 @@ fn unreadable_files_and_unknown_built_ins() {
     let dir = ObjDir::new();
     let path = dir.path().join("absent.toml");
     let error = load_scene(&path).unwrap_err();
-    assert!(matches!(&error, SceneError::Io { path: p, .. } if *p == path));
+    assert!(matches!(&error, SceneFileError::Read(ReadError::Io { path: p, .. }) if *p == path));
     let not_utf8 = dir.path().join("latin1.toml");
-    std::fs::write(&not_utf8, b"name = \"caf\xe9\"\n").unwrap();
-    assert!(matches!(load_scene(&not_utf8), Err(SceneError::Io { .. })));
+    std::fs::write(&not_utf8, b"\nname = \"caf\xe9\"\n").unwrap();
+    assert!(matches!(
+        load_scene(&not_utf8),
+        Err(SceneFileError::NotUtf8 { line: 2, .. })
+    ));
+    let error = load_scene(dir.path()).unwrap_err();
+    assert!(
+        matches!(
+            &error,
+            SceneFileError::Read(ReadError::NotRegularFile {
+                kind: "a directory",
+                ..
+            })
+        ),
+        "{error:?}"
+    );
+    let large = dir.path().join("large.toml");
+    let size = usize::try_from(shadowlab_scene::MAX_SCENE_FILE_BYTES).unwrap() + 1;
+    std::fs::write(&large, "#".repeat(size)).unwrap();
+    let message = load_scene(&large).unwrap_err().to_string();
+    assert!(
+        message.contains("larger than 4 MiB (MAX_SCENE_FILE_BYTES)"),
+        "{message}"
+    );
 
     let error = builtin_scene("indoor").unwrap_err();
-    assert!(matches!(&error, SceneError::UnknownScene { name } if name == "indoor"));
+    assert!(matches!(&error, BuiltinSceneError::Unknown { name } if name == "indoor"));
     assert_eq!(
         error.to_string(),
         "there is no built-in scene `indoor`; the built-in scenes are outdoor, dueling-frusta, \
@@ -704,6 +740,6 @@ fn parse_scene_names_the_path_it_is_given() {
     let error = parse_scene("[camera]\nfov = 0\n[[mesh]]\nshape = \"box\"\n", &path).unwrap_err();
     assert_eq!(
         error.to_string(),
-        "somewhere/else.toml: camera.fov (0) must be in (0, 180) degrees"
+        "somewhere/else.toml: camera.fov (0) must be in [0.001, 180) degrees (MIN_ANGLE_DEGREES)"
     );
 }

@@ -3,11 +3,28 @@
 use glam::{DAffine3, DVec3};
 
 use crate::bounds::Bounds;
-use crate::error::SceneError;
 use crate::normals;
+
+mod error;
+
+pub use error::MeshError;
 
 /// The most vertices a mesh can have: every index is a `u32`.
 pub(crate) const MAX_VERTICES: u64 = 1 << 32;
+
+/// The largest coordinate magnitude of a mesh's positions: 10⁴⁰. Differences and squared extents of
+/// such coordinates stay finite and normal in f64 (squares up to about 10⁸¹), and the ray caster's
+/// range (`shadowlab_trace::MAX_COORDINATE`, 2²⁰⁰ ≈ 1.6·10⁶⁰) leaves 10²⁰ of room for the eye,
+/// the lights and the planes derived from the scene. Every technique was tried on a box and sphere
+/// at this scale; at 10⁶⁰ the exact truth's rays leave the ray caster's range.
+pub const MAX_COORDINATE: f64 = 1e40;
+
+/// The smallest largest extent (the largest side of the bounding box) of a mesh read from an OBJ
+/// file or of a scene: 10⁻⁴⁰, the reciprocal of [`MAX_COORDINATE`], so that squared extents stay
+/// normal f64 numbers (about 10⁻⁸⁰, far above the smallest normal, 2.2·10⁻³⁰⁸). Every technique was
+/// tried on a scene of this size; a mesh of denormal coordinates has no extent the planners can
+/// measure. [`Mesh`] itself allows any extent, a single point included.
+pub const MIN_EXTENT: f64 = 1e-40;
 
 /// The name of the one group of a mesh built without groups.
 pub const DEFAULT_GROUP_NAME: &str = "default";
@@ -18,7 +35,7 @@ pub const DEFAULT_GROUP_NAME: &str = "default";
 ///
 /// # Guarantees
 /// - At least one triangle; every index is in range.
-/// - Every position is finite.
+/// - Every position is finite, each coordinate within ±[`MAX_COORDINATE`].
 /// - One normal per position, finite and of unit length (to rounding).
 /// - One group id per triangle, each less than [`Mesh::group_count`]; every group has a name
 ///   ([`Mesh::group_names`]), which need not be unique.
@@ -48,9 +65,10 @@ impl Mesh {
     /// [`crate::FALLBACK_NORMAL`], `+z`.
     ///
     /// # Errors
-    /// [`SceneError::NoTriangles`], [`SceneError::NonFinitePosition`],
-    /// [`SceneError::IndexOutOfRange`], [`SceneError::TooManyVertices`].
-    pub fn new(positions: Vec<DVec3>, triangles: Vec<[u32; 3]>) -> Result<Self, SceneError> {
+    /// [`MeshError::NoTriangles`], [`MeshError::NonFinitePosition`],
+    /// [`MeshError::PositionOutOfRange`], [`MeshError::IndexOutOfRange`],
+    /// [`MeshError::TooManyVertices`].
+    pub fn new(positions: Vec<DVec3>, triangles: Vec<[u32; 3]>) -> Result<Self, MeshError> {
         check_geometry(&positions, &triangles)?;
         let normals = normals::area_weighted(&positions, &triangles);
         Ok(Self::from_checked(positions, normals, triangles))
@@ -60,16 +78,16 @@ impl Mesh {
     /// [`DEFAULT_GROUP_NAME`].
     ///
     /// # Errors
-    /// As [`Mesh::new`], and [`SceneError::NormalCountMismatch`] or [`SceneError::InvalidNormal`]
+    /// As [`Mesh::new`], and [`MeshError::NormalCountMismatch`] or [`MeshError::InvalidNormal`]
     /// (a zero or non-finite normal).
     pub fn with_normals(
         positions: Vec<DVec3>,
         normals: Vec<DVec3>,
         triangles: Vec<[u32; 3]>,
-    ) -> Result<Self, SceneError> {
+    ) -> Result<Self, MeshError> {
         check_geometry(&positions, &triangles)?;
         if normals.len() != positions.len() {
-            return Err(SceneError::NormalCountMismatch {
+            return Err(MeshError::NormalCountMismatch {
                 positions: positions.len(),
                 normals: normals.len(),
             });
@@ -77,7 +95,7 @@ impl Mesh {
         let normals = normals
             .into_iter()
             .enumerate()
-            .map(|(vertex, n)| normals::unit(n).ok_or(SceneError::InvalidNormal { vertex }))
+            .map(|(vertex, n)| normals::unit(n).ok_or(MeshError::InvalidNormal { vertex }))
             .collect::<Result<Vec<_>, _>>()?;
         Ok(Self::from_checked(positions, normals, triangles))
     }
@@ -86,11 +104,11 @@ impl Mesh {
     /// `t`, an index into `names`.
     ///
     /// # Errors
-    /// [`SceneError::GroupCountMismatch`] unless there is one id per triangle;
-    /// [`SceneError::GroupOutOfRange`] for an id without a name; [`SceneError::TooManyGroups`].
-    pub fn with_groups(self, groups: Vec<u32>, names: Vec<String>) -> Result<Self, SceneError> {
+    /// [`MeshError::GroupCountMismatch`] unless there is one id per triangle;
+    /// [`MeshError::GroupOutOfRange`] for an id without a name; [`MeshError::TooManyGroups`].
+    pub fn with_groups(self, groups: Vec<u32>, names: Vec<String>) -> Result<Self, MeshError> {
         if groups.len() != self.triangles.len() {
-            return Err(SceneError::GroupCountMismatch {
+            return Err(MeshError::GroupCountMismatch {
                 triangles: self.triangles.len(),
                 groups: groups.len(),
             });
@@ -101,7 +119,7 @@ impl Mesh {
             .enumerate()
             .find(|&(_, &group)| group as usize >= names.len())
         {
-            return Err(SceneError::GroupOutOfRange {
+            return Err(MeshError::GroupOutOfRange {
                 triangle,
                 group,
                 group_count: names.len(),
@@ -236,19 +254,21 @@ impl Mesh {
     /// [`Mesh::transformed`], returning an error instead of panicking.
     ///
     /// # Errors
-    /// [`SceneError::InvalidTransform`] if the transform is not finite, its determinant is zero (or
+    /// [`MeshError::InvalidTransform`] if the transform is not finite, its determinant is zero (or
     /// so small that it underflows to zero, e.g. a uniform scale by 10⁻¹¹⁰) or not finite, a
-    /// transformed position is not finite, or a transformed normal has no direction.
-    pub fn try_transformed(&self, transform: &DAffine3) -> Result<Self, SceneError> {
+    /// transformed position is not finite, or a transformed normal has no direction;
+    /// [`MeshError::PositionOutOfRange`] if a transformed position lies beyond
+    /// ±[`MAX_COORDINATE`].
+    pub fn try_transformed(&self, transform: &DAffine3) -> Result<Self, MeshError> {
         if !transform.is_finite() {
-            return Err(SceneError::InvalidTransform {
+            return Err(MeshError::InvalidTransform {
                 reason: "not finite",
             });
         }
         let linear = transform.matrix3;
         let determinant = linear.determinant();
         if determinant == 0.0 || !determinant.is_finite() {
-            return Err(SceneError::InvalidTransform {
+            return Err(MeshError::InvalidTransform {
                 reason: "not invertible (its determinant is 0, underflows to 0, or overflows)",
             });
         }
@@ -260,16 +280,17 @@ impl Mesh {
                 let q = transform.transform_point3(p);
                 q.is_finite()
                     .then_some(q)
-                    .ok_or(SceneError::InvalidTransform {
+                    .ok_or(MeshError::InvalidTransform {
                         reason: "sending a vertex to a non-finite position",
                     })
             })
             .collect::<Result<Vec<_>, _>>()?;
+        check_range(&positions)?;
         let normals = self
             .normals
             .iter()
             .map(|&n| {
-                normals::unit(normal_matrix * n).ok_or(SceneError::InvalidTransform {
+                normals::unit(normal_matrix * n).ok_or(MeshError::InvalidTransform {
                     reason: "sending a normal to one without direction",
                 })
             })
@@ -304,12 +325,12 @@ impl Mesh {
     /// [`Mesh::merged`], returning an error instead of panicking.
     ///
     /// # Errors
-    /// [`SceneError::NoTriangles`] for an empty slice; [`SceneError::TooManyVertices`],
-    /// [`SceneError::TooManyGroups`].
-    pub fn try_merged(meshes: &[Self]) -> Result<Self, SceneError> {
+    /// [`MeshError::NoTriangles`] for an empty slice; [`MeshError::TooManyVertices`],
+    /// [`MeshError::TooManyGroups`].
+    pub fn try_merged(meshes: &[Self]) -> Result<Self, MeshError> {
         let vertex_count: u64 = meshes.iter().map(|m| m.positions.len() as u64).sum();
         if vertex_count > MAX_VERTICES {
-            return Err(SceneError::TooManyVertices {
+            return Err(MeshError::TooManyVertices {
                 count: vertex_count,
             });
         }
@@ -319,7 +340,7 @@ impl Mesh {
             .iter()
             .map(|m| m.bounds)
             .reduce(|a, b| a.union(&b))
-            .ok_or(SceneError::NoTriangles)?;
+            .ok_or(MeshError::NoTriangles)?;
         let mut merged = Self {
             positions: Vec::with_capacity(meshes.iter().map(|m| m.positions.len()).sum()),
             normals: Vec::with_capacity(meshes.iter().map(|m| m.normals.len()).sum()),
@@ -352,9 +373,9 @@ fn index_u32(value: usize) -> u32 {
 }
 
 /// Checks a group count against the `u32` id limit.
-fn check_group_count(count: usize) -> Result<(), SceneError> {
+fn check_group_count(count: usize) -> Result<(), MeshError> {
     if count as u64 > MAX_VERTICES {
-        return Err(SceneError::TooManyGroups {
+        return Err(MeshError::TooManyGroups {
             count: count as u64,
         });
     }
@@ -363,21 +384,22 @@ fn check_group_count(count: usize) -> Result<(), SceneError> {
 
 /// Checks positions and triangles: at least one triangle, finite positions, indices in range, and a
 /// vertex count that `u32` indices can address.
-fn check_geometry(positions: &[DVec3], triangles: &[[u32; 3]]) -> Result<(), SceneError> {
+fn check_geometry(positions: &[DVec3], triangles: &[[u32; 3]]) -> Result<(), MeshError> {
     if triangles.is_empty() {
-        return Err(SceneError::NoTriangles);
+        return Err(MeshError::NoTriangles);
     }
     if positions.len() as u64 > MAX_VERTICES {
-        return Err(SceneError::TooManyVertices {
+        return Err(MeshError::TooManyVertices {
             count: positions.len() as u64,
         });
     }
     if let Some(vertex) = positions.iter().position(|p| !p.is_finite()) {
-        return Err(SceneError::NonFinitePosition { vertex });
+        return Err(MeshError::NonFinitePosition { vertex });
     }
+    check_range(positions)?;
     for (triangle, corners) in triangles.iter().enumerate() {
         if let Some(&index) = corners.iter().find(|&&i| i as usize >= positions.len()) {
-            return Err(SceneError::IndexOutOfRange {
+            return Err(MeshError::IndexOutOfRange {
                 triangle,
                 index,
                 vertex_count: positions.len(),
@@ -385,4 +407,25 @@ fn check_geometry(positions: &[DVec3], triangles: &[[u32; 3]]) -> Result<(), Sce
         }
     }
     Ok(())
+}
+
+/// Checks that every coordinate lies within ±[`MAX_COORDINATE`].
+fn check_range(positions: &[DVec3]) -> Result<(), MeshError> {
+    match positions
+        .iter()
+        .enumerate()
+        .find(|(_, p)| p.abs().max_element() > MAX_COORDINATE)
+    {
+        Some((vertex, p)) => Err(MeshError::PositionOutOfRange {
+            vertex,
+            value: if p.x.abs() > MAX_COORDINATE {
+                p.x
+            } else if p.y.abs() > MAX_COORDINATE {
+                p.y
+            } else {
+                p.z
+            },
+        }),
+        None => Ok(()),
+    }
 }

@@ -5,10 +5,14 @@ use std::path::Path;
 
 use glam::DVec3;
 
-use crate::error::{ObjProblem, SceneError};
-use crate::mesh::{MAX_VERTICES, Mesh};
+use crate::mesh::{MAX_VERTICES, MIN_EXTENT, Mesh, MeshError};
 use crate::normals;
-use crate::obj_check;
+use crate::read::{MAX_OBJ_BYTES, read_bounded};
+
+mod check;
+mod error;
+
+pub use error::{ObjElement, ObjError, ObjProblem};
 
 /// Loads an OBJ file as one mesh.
 ///
@@ -27,25 +31,30 @@ use crate::obj_check;
 ///   winding.
 /// - **Materials** are ignored: `mtllib` files are not opened, so a missing `.mtl` is no error.
 ///
+/// - **Limits:** the file must be a regular file of at most [`MAX_OBJ_BYTES`]; every coordinate
+///   must lie within ±[`crate::MAX_COORDINATE`], and the positions must span at least
+///   [`MIN_EXTENT`] on some axis.
+///
 /// # Errors
-/// - [`SceneError::Io`] naming the path if it cannot be read;
-/// - [`SceneError::Obj`] naming the path and line of the first malformed statement, with an
-///   [`ObjProblem`]: a number that does not parse or is not finite, a wrong number of values, a
-///   face index that is 0 or refers to an element not defined above the line, a face with fewer
-///   than three vertices, a group mixing faces with and without normals, and the rest listed there;
-/// - [`SceneError::ObjWithoutFaces`] for a file with no faces;
-/// - [`SceneError::TooManyVertices`] for more than 2³² vertices.
-pub fn load_obj(path: &Path) -> Result<Mesh, SceneError> {
-    let bytes = std::fs::read(path).map_err(|source| SceneError::Io {
-        path: path.to_owned(),
-        source,
-    })?;
+/// - [`ObjError::Read`] if it cannot be read, is not a regular file (a directory, a device such
+///   as `/dev/zero`, a FIFO) or is larger than [`MAX_OBJ_BYTES`];
+/// - [`ObjError::Line`] naming the path and line of the first malformed statement, with an
+///   [`ObjProblem`]: a number that does not parse, is not finite or is beyond
+///   ±[`crate::MAX_COORDINATE`], a wrong number of values, a face index that is 0 or refers to an
+///   element not defined above the line, a face with fewer than three vertices, a group mixing
+///   faces with and without normals, and the rest listed there;
+/// - [`ObjError::NoFaces`] for a file with no faces;
+/// - [`ObjError::DegenerateExtent`] for positions spanning less than [`MIN_EXTENT`];
+/// - [`ObjError::Mesh`] for more than 2³² vertices.
+pub fn load_obj(path: &Path) -> Result<Mesh, ObjError> {
+    let bytes = read_bounded(path, MAX_OBJ_BYTES, "an OBJ file", "MAX_OBJ_BYTES")
+        .map_err(ObjError::Read)?;
     let text = std::str::from_utf8(&bytes).map_err(|error| {
         let line = 1 + bytes[..error.valid_up_to()]
             .iter()
             .filter(|&&b| b == b'\n')
             .count();
-        SceneError::Obj {
+        ObjError::Line {
             path: path.to_owned(),
             line,
             problem: ObjProblem::NotUtf8,
@@ -59,31 +68,39 @@ pub fn load_obj(path: &Path) -> Result<Mesh, SceneError> {
 /// in the binary.
 ///
 /// # Errors
-/// As [`load_obj`], except [`SceneError::Io`] and the UTF-8 check, which concern reading a file.
-pub fn parse_obj(text: &str, path: &Path) -> Result<Mesh, SceneError> {
-    let obj_error = |line, problem| SceneError::Obj {
+/// As [`load_obj`], except [`ObjError::Read`] and the UTF-8 check, which concern reading a file.
+pub fn parse_obj(text: &str, path: &Path) -> Result<Mesh, ObjError> {
+    let obj_error = |line, problem| ObjError::Line {
         path: path.to_owned(),
         line,
         problem,
     };
     // A byte-order mark would otherwise hide the first statement's keyword.
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
-    let summary = obj_check::check(text).map_err(|(line, problem)| obj_error(line, problem))?;
+    let summary = check::check(text).map_err(|(line, problem)| obj_error(line, problem))?;
     if summary.faces == 0 {
-        return Err(SceneError::ObjWithoutFaces {
+        return Err(ObjError::NoFaces {
             path: path.to_owned(),
         });
     }
     let models = if summary.has_polylines {
-        parse(&obj_check::without_polylines(text))
+        parse(&check::without_polylines(text))
     } else {
         parse(text)
     };
-    let models = models.map_err(|error| SceneError::ObjInternal {
+    let models = models.map_err(|error| ObjError::Internal {
         path: path.to_owned(),
         message: error.to_string(),
     })?;
-    assemble(models, path)
+    let mesh = assemble(models, path)?;
+    let extent = mesh.bounds().size().max_element();
+    if extent < MIN_EXTENT {
+        return Err(ObjError::DegenerateExtent {
+            path: path.to_owned(),
+            extent,
+        });
+    }
+    Ok(mesh)
 }
 
 /// tobj's reading of checked text: triangulated, one index for positions and normals, materials
@@ -103,7 +120,11 @@ fn parse(text: &str) -> Result<Vec<tobj::Model>, tobj::LoadError> {
 /// Joins tobj's models (one per run of faces between `g`/`o` statements) into one mesh: groups by
 /// name, file normals where every corner of a model has one, computed normals elsewhere. `path` is
 /// for error messages.
-fn assemble(models: Vec<tobj::Model>, path: &Path) -> Result<Mesh, SceneError> {
+fn assemble(models: Vec<tobj::Model>, path: &Path) -> Result<Mesh, ObjError> {
+    let mesh_error = |source| ObjError::Mesh {
+        path: path.to_owned(),
+        source,
+    };
     let mut positions = Vec::new();
     let mut file_normals: Vec<Option<DVec3>> = Vec::new();
     let mut triangles = Vec::new();
@@ -112,8 +133,10 @@ fn assemble(models: Vec<tobj::Model>, path: &Path) -> Result<Mesh, SceneError> {
     let mut group_ids: HashMap<String, u32> = HashMap::new();
     for model in models.into_iter().filter(|m| !m.mesh.indices.is_empty()) {
         let mesh = model.mesh;
-        let next_id = u32::try_from(group_names.len()).map_err(|_| SceneError::TooManyGroups {
-            count: group_names.len() as u64 + 1,
+        let next_id = u32::try_from(group_names.len()).map_err(|_| {
+            mesh_error(MeshError::TooManyGroups {
+                count: group_names.len() as u64 + 1,
+            })
         })?;
         let group = *group_ids.entry(model.name.clone()).or_insert_with(|| {
             group_names.push(model.name);
@@ -121,9 +144,9 @@ fn assemble(models: Vec<tobj::Model>, path: &Path) -> Result<Mesh, SceneError> {
         });
         let vertex_total = (positions.len() + mesh.positions.len() / 3) as u64;
         if vertex_total > MAX_VERTICES {
-            return Err(SceneError::TooManyVertices {
+            return Err(mesh_error(MeshError::TooManyVertices {
                 count: vertex_total,
-            });
+            }));
         }
         // Below the total, which is at most 2³²: every index of this model fits a u32.
         let offset = u32::try_from(positions.len()).expect("checked against MAX_VERTICES");
@@ -134,7 +157,7 @@ fn assemble(models: Vec<tobj::Model>, path: &Path) -> Result<Mesh, SceneError> {
         } else if mesh.normals.is_empty() {
             file_normals.resize(positions.len(), None);
         } else {
-            return Err(SceneError::ObjInternal {
+            return Err(ObjError::Internal {
                 path: path.to_owned(),
                 message: "a model's normals and positions differ in number".to_owned(),
             });
@@ -156,5 +179,7 @@ fn assemble(models: Vec<tobj::Model>, path: &Path) -> Result<Mesh, SceneError> {
             .map(|(given, computed)| given.unwrap_or(computed))
             .collect()
     };
-    Mesh::with_normals(positions, normals, triangles)?.with_groups(groups, group_names)
+    Mesh::with_normals(positions, normals, triangles)
+        .and_then(|mesh| mesh.with_groups(groups, group_names))
+        .map_err(mesh_error)
 }

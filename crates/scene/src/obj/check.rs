@@ -4,7 +4,7 @@
 //! and infinite coordinates, and (in debug builds) face indices that overflow its index arithmetic.
 //! So every statement tobj reads is checked here first, the way tobj reads it, and the first
 //! problem is reported with its line. Once this check passes, tobj does not fail (a failure would
-//! be a bug, reported as [`crate::SceneError::ObjInternal`]).
+//! be a bug, reported as [`super::ObjError::Internal`]).
 //!
 //! Where tobj's reading of a legal file would be wrong, the check is stricter than tobj and says so
 //! in its error:
@@ -16,9 +16,11 @@
 //!   breaks when some corners have none;
 //! - every `v` statement carries a colour (`v x y z r g b`) or none does (tobj rejects mixed files
 //!   later, without a line);
-//! - `vn` takes exactly three values, and its values must be finite, as must `v`'s.
+//! - `vn` takes exactly three values, and its values must be finite, as must `v`'s;
+//! - `v`'s coordinates (divided by w where a weight is given) lie within ±[`MAX_COORDINATE`].
 
-use crate::error::{ObjElement, ObjProblem};
+use super::error::{ObjElement, ObjProblem};
+use crate::mesh::MAX_COORDINATE;
 
 /// What the check learnt about a file that passed it.
 #[derive(Debug)]
@@ -166,13 +168,26 @@ impl Checker {
                 return Err(ObjProblem::ZeroWeight);
             }
             for (coordinate, token) in coordinates.iter().zip(values) {
-                if !(coordinate / weight).is_finite() {
+                let divided = coordinate / weight;
+                let token = || format!("{token}/{}", values[3]);
+                if !divided.is_finite() {
                     return Err(ObjProblem::NotFinite {
                         keyword: "v",
-                        token: format!("{token}/{}", values[3]),
+                        token: token(),
                     });
                 }
+                if divided.abs() > MAX_COORDINATE {
+                    return Err(ObjProblem::CoordinateOutOfRange { token: token() });
+                }
             }
+        } else if let Some((_, token)) = coordinates
+            .iter()
+            .zip(values)
+            .find(|(coordinate, _)| coordinate.abs() > MAX_COORDINATE)
+        {
+            return Err(ObjProblem::CoordinateOutOfRange {
+                token: (*token).to_owned(),
+            });
         }
         let has_colour = values.len() == 6;
         if has_colour {
