@@ -254,8 +254,7 @@ pub fn render_shadows(
     let bvh = match (options.plan.technique, bvh) {
         (_, Some(bvh)) => Some(bvh),
         (Technique::Logarithmic(_), None) => {
-            built = Bvh::new(scene.mesh.positions(), scene.mesh.triangles())
-                .map_err(|e| ShadowError::Trace(e.to_string()))?;
+            built = Bvh::new(scene.mesh.positions(), scene.mesh.triangles())?;
             Some(&built)
         }
         _ => None,
