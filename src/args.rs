@@ -1,4 +1,7 @@
-//! The command line, declared with clap.
+//! The command line, declared with clap. Every numeric flag takes negative numbers
+//! (`allow_negative_numbers`) and every flag whose value is a spec or a size takes values that
+//! start with `-`, so that a bad value reaches its check, which names the flag and the allowed
+//! range, instead of clap reading it as an unknown flag.
 
 use std::path::PathBuf;
 
@@ -58,24 +61,29 @@ pub(crate) struct AnalyzeArgs {
     /// A built-in scene or a scene file. Default: outdoor.
     pub(crate) scene: Option<String>,
     /// The techniques, comma-separated, each TECHNIQUE, lispsm:PARAMETER or optimal:refit.
-    #[arg(long, value_delimiter = ',', default_value = ALL_TECHNIQUES)]
+    #[arg(long, value_delimiter = ',', default_value = ALL_TECHNIQUES, allow_hyphen_values = true)]
     pub(crate) techniques: Vec<String>,
     /// Shadow-map sides, comma-separated (Chong and Gortler's: 750 to 2000).
-    #[arg(long, value_delimiter = ',', default_value = "750,1000,1250,1500,1750,2000", value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_TARGET_SIZE)))]
+    #[arg(long, value_delimiter = ',', default_value = "750,1000,1250,1500,1750,2000", allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_TARGET_SIZE)))]
     pub(crate) resolutions: Vec<u32>,
     /// Partition counts, comma-separated.
-    #[arg(long, value_delimiter = ',', default_value = "1", value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_PARTITIONS)))]
+    #[arg(long, value_delimiter = ',', default_value = "1", allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_PARTITIONS)))]
     pub(crate) splits: Vec<u32>,
     /// How partitions split the depth range: uniform, logarithmic, practical or practical:WEIGHT,
     /// adaptive or adaptive:DELTA.
-    #[arg(long, default_value = "practical:0.5")]
+    #[arg(long, default_value = "practical:0.5", allow_hyphen_values = true)]
     pub(crate) split_scheme: String,
     /// Filters, comma-separated: nearest, pcf:K, disk:TAPS;RADIUS (use ; between a filter's
     /// numbers here), vsm:K.
-    #[arg(long, value_delimiter = ',', default_value = "nearest")]
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "nearest",
+        allow_hyphen_values = true
+    )]
     pub(crate) filters: Vec<String>,
     /// Depth bias of every lookup.
-    #[arg(long, default_value = "slope:2,1e-5")]
+    #[arg(long, default_value = "slope:2,1e-5", allow_hyphen_values = true)]
     pub(crate) bias: String,
     /// Also compare the exact truth with a 4096² uniform map's, as Chong and Gortler's truth was.
     #[arg(long)]
@@ -122,10 +130,10 @@ pub(crate) struct StatedWarps {
 #[derive(Debug, Args)]
 pub(crate) struct StudyView {
     /// Shadow-map side.
-    #[arg(long, default_value_t = 1024, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_TARGET_SIZE)))]
+    #[arg(long, default_value_t = 1024, allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_TARGET_SIZE)))]
     pub(crate) resolution: u32,
     /// Eye image size, WIDTHxHEIGHT (default: the scene's).
-    #[arg(long, value_parser = parse_size)]
+    #[arg(long, value_parser = parse_size, allow_hyphen_values = true)]
     pub(crate) eye_size: Option<(u32, u32)>,
 }
 
@@ -138,6 +146,7 @@ pub(crate) struct SweepArgs {
     #[arg(
         long,
         value_delimiter = ',',
+        allow_hyphen_values = true,
         default_value = "uniform,psm,lispsm,lispsm:minimax,lispsm:filament,lispsm:ogre,lispsm:osg,lispsm:osg_vdsm,optimal"
     )]
     pub(crate) techniques: Vec<String>,
@@ -158,12 +167,13 @@ pub(crate) struct TemporalArgs {
     /// A built-in scene or a scene file. Default: outdoor.
     pub(crate) scene: Option<String>,
     /// Number of frames of the walk.
-    #[arg(long, default_value_t = 24, value_parser = clap::value_parser!(u32).range(2..=10000))]
+    #[arg(long, default_value_t = 24, allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(2..=10000))]
     pub(crate) frames: u32,
     /// The techniques, comma-separated.
     #[arg(
         long,
         value_delimiter = ',',
+        allow_hyphen_values = true,
         default_value = "uniform,uniform_limited,psm,lispsm,optimal"
     )]
     pub(crate) techniques: Vec<String>,
@@ -183,18 +193,19 @@ pub(crate) struct CompareArgs {
     #[arg(
         long,
         value_delimiter = ',',
+        allow_hyphen_values = true,
         default_value = "uniform,uniform_limited,psm,lispsm,logarithmic"
     )]
     pub(crate) techniques: Vec<String>,
     /// Shadow-map side in texels.
-    #[arg(long, default_value_t = 1024, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_TARGET_SIZE)))]
+    #[arg(long, default_value_t = 1024, allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_TARGET_SIZE)))]
     pub(crate) resolution: u32,
     /// The part of the eye image to show, `X,Y,WIDTH,HEIGHT` in pixels from the top left. Default:
     /// the whole image.
-    #[arg(long, value_parser = parse_crop)]
+    #[arg(long, value_parser = parse_crop, allow_hyphen_values = true)]
     pub(crate) crop: Option<[u32; 4]>,
     /// Pictures per row.
-    #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u32).range(1..=16))]
+    #[arg(long, default_value_t = 3, allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(1..=16))]
     pub(crate) columns: u32,
     /// Stated warps shown beside the techniques.
     #[command(flatten)]
@@ -236,14 +247,14 @@ pub(crate) struct ShadowArgs {
     /// (.toml). Default: outdoor.
     pub(crate) scene: Option<String>,
     /// The technique: uniform, uniform_limited, psm, lispsm, logarithmic, optimal. Default: lispsm.
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     pub(crate) technique: Option<String>,
     /// LiSPSM's parameter: lispsm (the paper's n = (z_n + √(z_n·z_f))/sin γ, default), lispsm_dz,
     /// cad, cad_eq17, cad_sin2, gmnpr, glpr, minimax, uniform, model (shadowlab's λ transfer); or
     /// an engine's: filament, ogre, osg, authors2006, osg_vdsm. For logarithmic, the reference
     /// point: eye (default) or faces (Lloyd et al.'s face partitioning). For optimal, the step:
     /// paper (default) or refit.
-    #[arg(long = "param", conflicts_with_all = ["lambda", "near_distance"])]
+    #[arg(long = "param", conflicts_with_all = ["lambda", "near_distance"], allow_hyphen_values = true)]
     pub(crate) parameter: Option<String>,
     /// λ = n/d instead of --param: LiSPSM's warp, or where the logarithmic map's reference point
     /// lies (inf: the uniform map).
@@ -258,26 +269,26 @@ pub(crate) struct ShadowArgs {
     #[arg(long, value_parser = FocusPolicy::parse)]
     pub(crate) focus: Option<FocusPolicy>,
     /// Shadow-map side in texels.
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_TARGET_SIZE)),
+    #[arg(long, allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_TARGET_SIZE)),
           help = format!("Shadow-map side in texels. Default: {DEFAULT_RESOLUTION}"))]
     pub(crate) resolution: Option<u32>,
     /// Number of z-partitions (one map each). Default: 1.
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_PARTITIONS)))]
+    #[arg(long, allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_PARTITIONS)))]
     pub(crate) splits: Option<u32>,
     /// How partitions split the depth range: uniform, logarithmic, practical or practical:WEIGHT,
     /// adaptive or adaptive:DELTA. Default: practical:0.5.
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     pub(crate) split_scheme: Option<String>,
     /// Depth bias: none, constant:OFFSET, slope:FACTOR or slope:FACTOR,CONSTANT, second-depth, midpoint,
     /// dual-depth:MAX (window-depth units). Default: slope:2,1e-5.
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     pub(crate) bias: Option<String>,
     /// Filter: nearest, pcf:K, disk:TAPS,RADIUS or disk:TAPS,RADIUS,SEED, vsm:K or
     /// vsm:K,MIN_VARIANCE. Default: nearest.
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     pub(crate) filter: Option<String>,
     /// Depth format of the maps: f32, reversed-f32, unorm24, unorm16. Default: f32.
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     pub(crate) format: Option<String>,
     /// The scene-optimized map's settings.
     #[command(flatten)]
@@ -318,10 +329,10 @@ pub(crate) struct RenderMeshArgs {
     #[arg(long)]
     pub(crate) eye: bool,
     /// Side of the light pass's square target, in pixels.
-    #[arg(long, default_value_t = 2048, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_TARGET_SIZE)))]
+    #[arg(long, default_value_t = 2048, allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_TARGET_SIZE)))]
     pub(crate) size: u32,
     /// Size of the eye pass's target, WIDTHxHEIGHT.
-    #[arg(long, default_value = "1024x768", value_parser = parse_size)]
+    #[arg(long, default_value = "1024x768", value_parser = parse_size, allow_hyphen_values = true)]
     pub(crate) eye_size: (u32, u32),
     /// Round positions and matrices to f32 first, as a GPU's vertex buffers and uniforms hold them
     /// (the rasterizer still works in f64 from there); for pixel comparisons with GL renderers.
@@ -355,16 +366,16 @@ pub(crate) fn parse_size(text: &str) -> Result<(u32, u32), String> {
 #[derive(Debug, Args)]
 pub(crate) struct ParamsArgs {
     /// Eye near distance (> 0).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub(crate) near: f64,
     /// Eye far distance (> near).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub(crate) far: f64,
     /// Full field of view in degrees, in the plane of the light and view directions (0 < fov < 180).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub(crate) fov: f64,
     /// Angle between light and view directions in degrees, 0 (parallel) to 90 (perpendicular).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub(crate) gamma: f64,
     /// Which fall-back curve r(γ) the CAD survey's eq. 16 uses below γ_lim.
     #[arg(long, value_enum, default_value_t = CadFalloff::Eq18)]
@@ -395,13 +406,13 @@ pub(crate) struct CurvesArgs {
     #[arg(long, default_value = "out/curves")]
     pub(crate) out: PathBuf,
     /// Eye near distance of every figure.
-    #[arg(long, default_value_t = 1.0)]
+    #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
     pub(crate) near: f64,
     /// Eye far distance of every figure.
-    #[arg(long, default_value_t = 100.0)]
+    #[arg(long, default_value_t = 100.0, allow_negative_numbers = true)]
     pub(crate) far: f64,
     /// Full field of view in degrees of every figure.
-    #[arg(long, default_value_t = 60.0)]
+    #[arg(long, default_value_t = 60.0, allow_negative_numbers = true)]
     pub(crate) fov: f64,
 }
 
@@ -421,25 +432,25 @@ fn figure_name(text: &str) -> Result<shadowlab_curves::FigureName, String> {
 #[derive(Debug, Args)]
 pub(crate) struct OptimizerArgs {
     /// Size of the optimizer's low-resolution eye pass, WIDTHxHEIGHT.
-    #[arg(long, value_name = "WxH", value_parser = parse_size, help = format!(
+    #[arg(long, value_name = "WxH", value_parser = parse_size, allow_hyphen_values = true, help = format!(
         "Size of the optimizer's low-resolution eye pass, WIDTHxHEIGHT. Default: {}x{} (CG06 §4)",
         READBACK_SIZE.0, READBACK_SIZE.1
     ))]
     pub(crate) optimal_readback: Option<(u32, u32)>,
     /// Side of the initial map.
-    #[arg(long, value_name = "TEXELS", value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_TARGET_SIZE)), help = format!(
+    #[arg(long, value_name = "TEXELS", allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_TARGET_SIZE)), help = format!(
         "Side of the initial (uniform-limited) map the samples' shadow states are read from, \
          texels. Default: {INITIAL_MAP_RESOLUTION}"
     ))]
     pub(crate) optimal_initial: Option<u32>,
     /// The most iterations.
-    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(0..=i64::from(MAX_OPTIMAL_ITERATIONS)), help = format!(
+    #[arg(long, value_name = "N", allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(0..=i64::from(MAX_OPTIMAL_ITERATIONS)), help = format!(
         "The most iterations of the optimizer's descent (0: the initial fit only). Default: \
          {ITERATIONS} (CG06 §4)"
     ))]
     pub(crate) optimal_iterations: Option<u32>,
     /// The border.
-    #[arg(long, value_name = "FRACTION", value_parser = parse_border, help = format!(
+    #[arg(long, value_name = "FRACTION", value_parser = parse_border, allow_negative_numbers = true, help = format!(
         "The border around the samples, a fraction of the map's side in [0, 0.5). Default: {BORDER}"
     ))]
     pub(crate) optimal_border: Option<f64>,
