@@ -64,10 +64,10 @@ pub(crate) struct AnalyzeArgs {
     #[arg(long, value_delimiter = ',', default_value = ALL_TECHNIQUES, allow_hyphen_values = true)]
     pub(crate) techniques: Vec<String>,
     /// Shadow-map sides, comma-separated (Chong and Gortler's: 750 to 2000).
-    #[arg(long, value_delimiter = ',', default_value = "750,1000,1250,1500,1750,2000", allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_TARGET_SIZE)))]
+    #[arg(long, value_delimiter = ',', default_value = "750,1000,1250,1500,1750,2000", allow_negative_numbers = true, value_parser = whole::<1, MAX_TARGET_SIZE>)]
     pub(crate) resolutions: Vec<u32>,
     /// Partition counts, comma-separated.
-    #[arg(long, value_delimiter = ',', default_value = "1", allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_PARTITIONS)))]
+    #[arg(long, value_delimiter = ',', default_value = "1", allow_negative_numbers = true, value_parser = whole::<1, MAX_PARTITIONS>)]
     pub(crate) splits: Vec<u32>,
     /// How partitions split the depth range: uniform, logarithmic, practical or practical:WEIGHT,
     /// adaptive or adaptive:DELTA.
@@ -130,7 +130,7 @@ pub(crate) struct StatedWarps {
 #[derive(Debug, Args)]
 pub(crate) struct StudyView {
     /// Shadow-map side.
-    #[arg(long, default_value_t = 1024, allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_TARGET_SIZE)))]
+    #[arg(long, default_value_t = 1024, allow_negative_numbers = true, value_parser = whole::<1, MAX_TARGET_SIZE>)]
     pub(crate) resolution: u32,
     /// Eye image size, WIDTHxHEIGHT (default: the scene's).
     #[arg(long, value_parser = parse_size, allow_hyphen_values = true)]
@@ -167,7 +167,7 @@ pub(crate) struct TemporalArgs {
     /// A built-in scene or a scene file. Default: outdoor.
     pub(crate) scene: Option<String>,
     /// Number of frames of the walk.
-    #[arg(long, default_value_t = 24, allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(2..=10000))]
+    #[arg(long, default_value_t = 24, allow_negative_numbers = true, value_parser = whole::<2, MAX_FRAMES>)]
     pub(crate) frames: u32,
     /// The techniques, comma-separated.
     #[arg(
@@ -198,14 +198,14 @@ pub(crate) struct CompareArgs {
     )]
     pub(crate) techniques: Vec<String>,
     /// Shadow-map side in texels.
-    #[arg(long, default_value_t = 1024, allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_TARGET_SIZE)))]
+    #[arg(long, default_value_t = 1024, allow_negative_numbers = true, value_parser = whole::<1, MAX_TARGET_SIZE>)]
     pub(crate) resolution: u32,
     /// The part of the eye image to show, `X,Y,WIDTH,HEIGHT` in pixels from the top left. Default:
     /// the whole image.
     #[arg(long, value_parser = parse_crop, allow_hyphen_values = true)]
     pub(crate) crop: Option<[u32; 4]>,
     /// Pictures per row.
-    #[arg(long, default_value_t = 3, allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(1..=16))]
+    #[arg(long, default_value_t = 3, allow_negative_numbers = true, value_parser = whole::<1, MAX_COLUMNS>)]
     pub(crate) columns: u32,
     /// Stated warps shown beside the techniques.
     #[command(flatten)]
@@ -269,11 +269,11 @@ pub(crate) struct ShadowArgs {
     #[arg(long, value_parser = FocusPolicy::parse)]
     pub(crate) focus: Option<FocusPolicy>,
     /// Shadow-map side in texels.
-    #[arg(long, allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_TARGET_SIZE)),
+    #[arg(long, allow_negative_numbers = true, value_parser = whole::<1, MAX_TARGET_SIZE>,
           help = format!("Shadow-map side in texels. Default: {DEFAULT_RESOLUTION}"))]
     pub(crate) resolution: Option<u32>,
     /// Number of z-partitions (one map each). Default: 1.
-    #[arg(long, allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_PARTITIONS)))]
+    #[arg(long, allow_negative_numbers = true, value_parser = whole::<1, MAX_PARTITIONS>)]
     pub(crate) splits: Option<u32>,
     /// How partitions split the depth range: uniform, logarithmic, practical or practical:WEIGHT,
     /// adaptive or adaptive:DELTA. Default: practical:0.5.
@@ -329,7 +329,7 @@ pub(crate) struct RenderMeshArgs {
     #[arg(long)]
     pub(crate) eye: bool,
     /// Side of the light pass's square target, in pixels.
-    #[arg(long, default_value_t = 2048, allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_TARGET_SIZE)))]
+    #[arg(long, default_value_t = 2048, allow_negative_numbers = true, value_parser = whole::<1, MAX_TARGET_SIZE>)]
     pub(crate) size: u32,
     /// Size of the eye pass's target, WIDTHxHEIGHT.
     #[arg(long, default_value = "1024x768", value_parser = parse_size, allow_hyphen_values = true)]
@@ -345,6 +345,22 @@ pub(crate) struct RenderMeshArgs {
     /// Directory to write into (created if missing): MESH-light.{png,exr}, MESH-eye.{png,exr}.
     #[arg(long, default_value = "out/render")]
     pub(crate) out: PathBuf,
+}
+
+/// The most frames of a camera walk (`temporal --frames`).
+pub(crate) const MAX_FRAMES: u32 = 10000;
+
+/// The most pictures per row of `compare`.
+pub(crate) const MAX_COLUMNS: u32 = 16;
+
+/// A whole number in `MIN..=MAX`: the parser of every count and size flag, whose message states
+/// the range for any text (clap's own says "invalid digit found in string" for `1e9`).
+pub(crate) fn whole<const MIN: u32, const MAX: u32>(text: &str) -> Result<u32, String> {
+    text.trim()
+        .parse::<u32>()
+        .ok()
+        .filter(|value| (MIN..=MAX).contains(value))
+        .ok_or_else(|| format!("{text:?} is not a whole number in {MIN}..={MAX}"))
 }
 
 /// `WIDTHxHEIGHT`, each side 1 to [`MAX_TARGET_SIZE`]: the one size parser of every flag.
@@ -438,13 +454,13 @@ pub(crate) struct OptimizerArgs {
     ))]
     pub(crate) optimal_readback: Option<(u32, u32)>,
     /// Side of the initial map.
-    #[arg(long, value_name = "TEXELS", allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_TARGET_SIZE)), help = format!(
+    #[arg(long, value_name = "TEXELS", allow_negative_numbers = true, value_parser = whole::<1, MAX_TARGET_SIZE>, help = format!(
         "Side of the initial (uniform-limited) map the samples' shadow states are read from, \
          texels. Default: {INITIAL_MAP_RESOLUTION}"
     ))]
     pub(crate) optimal_initial: Option<u32>,
     /// The most iterations.
-    #[arg(long, value_name = "N", allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(0..=i64::from(MAX_OPTIMAL_ITERATIONS)), help = format!(
+    #[arg(long, value_name = "N", allow_negative_numbers = true, value_parser = whole::<0, MAX_OPTIMAL_ITERATIONS>, help = format!(
         "The most iterations of the optimizer's descent (0: the initial fit only). Default: \
          {ITERATIONS} (CG06 §4)"
     ))]
