@@ -7,11 +7,15 @@
 //!   continuity at γ = 0, bad input.
 //! * `render_cli` — `shadowlab render` and `inspect`: the pictures, repeatable, partitions, JSON,
 //!   bad scenes and settings.
+//! * `hostile_cli` — hostile input: malformed OBJ and scene files, special files, absurd flags;
+//!   each refused with exit code 2 (1 for I/O failures), a message naming the cause, and nothing
+//!   written.
 //! * `warp_cli` — what a user states: `--lambda`, `--n`, `--focus`, the `[shadow]` table and its
 //!   optimizer settings, rules' inputs in `inspect`, defaults in help texts, refusals named.
 
 mod analyze_cli;
 mod curves_cli;
+mod hostile_cli;
 mod params_cli;
 mod render_cli;
 mod render_mesh_cli;
