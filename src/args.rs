@@ -1,4 +1,7 @@
-//! The command line, declared with clap.
+//! The command line, declared with clap. Every numeric flag takes negative numbers
+//! (`allow_negative_numbers`) and every flag whose value is a spec or a size takes values that
+//! start with `-`, so that a bad value reaches its check, which names the flag and the allowed
+//! range, instead of clap reading it as an unknown flag.
 
 use std::path::PathBuf;
 
@@ -53,6 +56,19 @@ pub(crate) enum Command {
     Temporal(TemporalArgs),
 }
 
+/// A value that may begin with `-` (flags that take one accept it, so that the flag's own check
+/// refuses a bad value), but not a flag: `--technique --resolution 5` would otherwise take
+/// `--resolution` as the technique.
+fn value_not_flag(value: &str) -> Result<String, String> {
+    if value.starts_with("--") {
+        Err(format!(
+            "`{value}` is a flag, not a value: give this flag a value before the next flag"
+        ))
+    } else {
+        Ok(value.to_string())
+    }
+}
+
 /// The techniques every study command measures by default.
 const ALL_TECHNIQUES: &str =
     "uniform,uniform_limited,psm,lispsm,lispsm:minimax,logarithmic,optimal";
@@ -63,24 +79,29 @@ pub(crate) struct AnalyzeArgs {
     /// A built-in scene or a scene file. Default: outdoor.
     pub(crate) scene: Option<String>,
     /// The techniques, comma-separated, each TECHNIQUE, lispsm:PARAMETER or optimal:refit.
-    #[arg(long, value_delimiter = ',', default_value = ALL_TECHNIQUES)]
+    #[arg(long, value_delimiter = ',', default_value = ALL_TECHNIQUES, allow_hyphen_values = true, value_parser = value_not_flag)]
     pub(crate) techniques: Vec<String>,
     /// Shadow-map sides, comma-separated (Chong and Gortler's: 750 to 2000).
-    #[arg(long, value_delimiter = ',', default_value = "750,1000,1250,1500,1750,2000", value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_TARGET_SIZE)))]
+    #[arg(long, value_delimiter = ',', default_value = "750,1000,1250,1500,1750,2000", allow_negative_numbers = true, value_parser = whole::<1, MAX_TARGET_SIZE>)]
     pub(crate) resolutions: Vec<u32>,
     /// Partition counts, comma-separated.
-    #[arg(long, value_delimiter = ',', default_value = "1", value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_PARTITIONS)))]
+    #[arg(long, value_delimiter = ',', default_value = "1", allow_negative_numbers = true, value_parser = whole::<1, MAX_PARTITIONS>)]
     pub(crate) splits: Vec<u32>,
     /// How partitions split the depth range: uniform, logarithmic, practical or practical:WEIGHT,
     /// adaptive or adaptive:DELTA.
-    #[arg(long, default_value = "practical:0.5")]
+    #[arg(long, default_value = "practical:0.5", allow_hyphen_values = true, value_parser = value_not_flag)]
     pub(crate) split_scheme: String,
     /// Filters, comma-separated: nearest, pcf:K, disk:TAPS;RADIUS (use ; between a filter's
     /// numbers here), vsm:K.
-    #[arg(long, value_delimiter = ',', default_value = "nearest")]
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "nearest",
+        allow_hyphen_values = true, value_parser = value_not_flag
+    )]
     pub(crate) filters: Vec<String>,
     /// Depth bias of every lookup.
-    #[arg(long, default_value = "slope:2,1e-5")]
+    #[arg(long, default_value = "slope:2,1e-5", allow_hyphen_values = true, value_parser = value_not_flag)]
     pub(crate) bias: String,
     /// Also compare the exact truth with a 4096² uniform map's, as Chong and Gortler's truth was.
     #[arg(long)]
@@ -135,7 +156,7 @@ pub(crate) struct MemoryArgs {
     /// Refuse a run whose estimated memory exceeds SIZE: bytes, or a number with K, M, G or T
     /// (powers of 1024). Default: 75 % of the memory available to the process (its cgroup's limit
     /// or the system's).
-    #[arg(long, value_name = "SIZE", value_parser = Bytes::parse)]
+    #[arg(long, value_name = "SIZE", value_parser = Bytes::parse, allow_hyphen_values = true)]
     pub(crate) memory_budget: Option<Bytes>,
 }
 
@@ -143,10 +164,10 @@ pub(crate) struct MemoryArgs {
 #[derive(Debug, Args)]
 pub(crate) struct StudyView {
     /// Shadow-map side.
-    #[arg(long, default_value_t = 1024, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_TARGET_SIZE)))]
+    #[arg(long, default_value_t = 1024, allow_negative_numbers = true, value_parser = whole::<1, MAX_TARGET_SIZE>)]
     pub(crate) resolution: u32,
     /// Eye image size, WIDTHxHEIGHT (default: the scene's).
-    #[arg(long, value_parser = parse_size)]
+    #[arg(long, value_parser = parse_size, allow_hyphen_values = true)]
     pub(crate) eye_size: Option<(u32, u32)>,
 }
 
@@ -159,6 +180,7 @@ pub(crate) struct SweepArgs {
     #[arg(
         long,
         value_delimiter = ',',
+        allow_hyphen_values = true, value_parser = value_not_flag,
         default_value = "uniform,psm,lispsm,lispsm:minimax,lispsm:filament,lispsm:ogre,lispsm:osg,lispsm:osg_vdsm,optimal"
     )]
     pub(crate) techniques: Vec<String>,
@@ -181,12 +203,13 @@ pub(crate) struct TemporalArgs {
     /// A built-in scene or a scene file. Default: outdoor.
     pub(crate) scene: Option<String>,
     /// Number of frames of the walk.
-    #[arg(long, default_value_t = 24, value_parser = clap::value_parser!(u32).range(2..=10000))]
+    #[arg(long, default_value_t = 24, allow_negative_numbers = true, value_parser = whole::<2, MAX_FRAMES>)]
     pub(crate) frames: u32,
     /// The techniques, comma-separated.
     #[arg(
         long,
         value_delimiter = ',',
+        allow_hyphen_values = true, value_parser = value_not_flag,
         default_value = "uniform,uniform_limited,psm,lispsm,optimal"
     )]
     pub(crate) techniques: Vec<String>,
@@ -208,18 +231,19 @@ pub(crate) struct CompareArgs {
     #[arg(
         long,
         value_delimiter = ',',
+        allow_hyphen_values = true, value_parser = value_not_flag,
         default_value = "uniform,uniform_limited,psm,lispsm,logarithmic"
     )]
     pub(crate) techniques: Vec<String>,
     /// Shadow-map side in texels.
-    #[arg(long, default_value_t = 1024, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_TARGET_SIZE)))]
+    #[arg(long, default_value_t = 1024, allow_negative_numbers = true, value_parser = whole::<1, MAX_TARGET_SIZE>)]
     pub(crate) resolution: u32,
     /// The part of the eye image to show, `X,Y,WIDTH,HEIGHT` in pixels from the top left. Default:
     /// the whole image.
-    #[arg(long, value_parser = parse_crop)]
+    #[arg(long, value_parser = parse_crop, allow_hyphen_values = true)]
     pub(crate) crop: Option<[u32; 4]>,
     /// Pictures per row.
-    #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u32).range(1..=16))]
+    #[arg(long, default_value_t = 3, allow_negative_numbers = true, value_parser = whole::<1, MAX_COLUMNS>)]
     pub(crate) columns: u32,
     /// Stated warps shown beside the techniques.
     #[command(flatten)]
@@ -263,14 +287,14 @@ pub(crate) struct ShadowArgs {
     /// (.toml). Default: outdoor.
     pub(crate) scene: Option<String>,
     /// The technique: uniform, uniform_limited, psm, lispsm, logarithmic, optimal. Default: lispsm.
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true, value_parser = value_not_flag)]
     pub(crate) technique: Option<String>,
     /// LiSPSM's parameter: lispsm (the paper's n = (z_n + √(z_n·z_f))/sin γ, default), lispsm_dz,
     /// cad, cad_eq17, cad_sin2, gmnpr, glpr, minimax, uniform, model (shadowlab's λ transfer); or
     /// an engine's: filament, ogre, osg, authors2006, osg_vdsm. For logarithmic, the reference
     /// point: eye (default) or faces (Lloyd et al.'s face partitioning). For optimal, the step:
     /// paper (default) or refit.
-    #[arg(long = "param", conflicts_with_all = ["lambda", "near_distance"])]
+    #[arg(long = "param", conflicts_with_all = ["lambda", "near_distance"], allow_hyphen_values = true, value_parser = value_not_flag)]
     pub(crate) parameter: Option<String>,
     /// λ = n/d instead of --param: LiSPSM's warp, or where the logarithmic map's reference point
     /// lies (inf: the uniform map).
@@ -285,26 +309,26 @@ pub(crate) struct ShadowArgs {
     #[arg(long, value_parser = FocusPolicy::parse)]
     pub(crate) focus: Option<FocusPolicy>,
     /// Shadow-map side in texels.
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_TARGET_SIZE)),
+    #[arg(long, allow_negative_numbers = true, value_parser = whole::<1, MAX_TARGET_SIZE>,
           help = format!("Shadow-map side in texels. Default: {DEFAULT_RESOLUTION}"))]
     pub(crate) resolution: Option<u32>,
     /// Number of z-partitions (one map each). Default: 1.
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_PARTITIONS)))]
+    #[arg(long, allow_negative_numbers = true, value_parser = whole::<1, MAX_PARTITIONS>)]
     pub(crate) splits: Option<u32>,
     /// How partitions split the depth range: uniform, logarithmic, practical or practical:WEIGHT,
     /// adaptive or adaptive:DELTA. Default: practical:0.5.
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true, value_parser = value_not_flag)]
     pub(crate) split_scheme: Option<String>,
     /// Depth bias: none, constant:OFFSET, slope:FACTOR or slope:FACTOR,CONSTANT, second-depth, midpoint,
     /// dual-depth:MAX (window-depth units). Default: slope:2,1e-5.
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true, value_parser = value_not_flag)]
     pub(crate) bias: Option<String>,
     /// Filter: nearest, pcf:K, disk:TAPS,RADIUS or disk:TAPS,RADIUS,SEED, vsm:K or
     /// vsm:K,MIN_VARIANCE. Default: nearest.
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true, value_parser = value_not_flag)]
     pub(crate) filter: Option<String>,
     /// Depth format of the maps: f32, reversed-f32, unorm24, unorm16. Default: f32.
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true, value_parser = value_not_flag)]
     pub(crate) format: Option<String>,
     /// The scene-optimized map's settings.
     #[command(flatten)]
@@ -347,10 +371,10 @@ pub(crate) struct RenderMeshArgs {
     #[arg(long)]
     pub(crate) eye: bool,
     /// Side of the light pass's square target, in pixels.
-    #[arg(long, default_value_t = 2048, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_TARGET_SIZE)))]
+    #[arg(long, default_value_t = 2048, allow_negative_numbers = true, value_parser = whole::<1, MAX_TARGET_SIZE>)]
     pub(crate) size: u32,
     /// Size of the eye pass's target, WIDTHxHEIGHT.
-    #[arg(long, default_value = "1024x768", value_parser = parse_size)]
+    #[arg(long, default_value = "1024x768", value_parser = parse_size, allow_hyphen_values = true)]
     pub(crate) eye_size: (u32, u32),
     /// Round positions and matrices to f32 first, as a GPU's vertex buffers and uniforms hold them
     /// (the rasterizer still works in f64 from there); for pixel comparisons with GL renderers.
@@ -365,6 +389,22 @@ pub(crate) struct RenderMeshArgs {
     /// Directory to write into (created if missing): MESH-light.{png,exr}, MESH-eye.{png,exr}.
     #[arg(long, default_value = "out/render-mesh")]
     pub(crate) out: PathBuf,
+}
+
+/// The most frames of a camera walk (`temporal --frames`).
+pub(crate) const MAX_FRAMES: u32 = 10000;
+
+/// The most pictures per row of `compare`.
+pub(crate) const MAX_COLUMNS: u32 = 16;
+
+/// A whole number in `MIN..=MAX`: the parser of every count and size flag, whose message states
+/// the range for any text (clap's own says "invalid digit found in string" for `1e9`).
+pub(crate) fn whole<const MIN: u32, const MAX: u32>(text: &str) -> Result<u32, String> {
+    text.trim()
+        .parse::<u32>()
+        .ok()
+        .filter(|value| (MIN..=MAX).contains(value))
+        .ok_or_else(|| format!("{text:?} is not a whole number in {MIN}..={MAX}"))
 }
 
 /// `WIDTHxHEIGHT`, each side 1 to [`MAX_TARGET_SIZE`]: the one size parser of every flag.
@@ -386,16 +426,16 @@ pub(crate) fn parse_size(text: &str) -> Result<(u32, u32), String> {
 #[derive(Debug, Args)]
 pub(crate) struct ParamsArgs {
     /// Eye near distance (> 0).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub(crate) near: f64,
     /// Eye far distance (> near).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub(crate) far: f64,
     /// Full field of view in degrees, in the plane of the light and view directions (0 < fov < 180).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub(crate) fov: f64,
     /// Angle between light and view directions in degrees, 0 (parallel) to 90 (perpendicular).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub(crate) gamma: f64,
     /// Which fall-back curve r(γ) the CAD survey's eq. 16 uses below γ_lim.
     #[arg(long, value_enum, default_value_t = CadFalloff::Eq18)]
@@ -426,13 +466,13 @@ pub(crate) struct CurvesArgs {
     #[arg(long, default_value = "out/curves")]
     pub(crate) out: PathBuf,
     /// Eye near distance of every figure.
-    #[arg(long, default_value_t = 1.0)]
+    #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
     pub(crate) near: f64,
     /// Eye far distance of every figure.
-    #[arg(long, default_value_t = 100.0)]
+    #[arg(long, default_value_t = 100.0, allow_negative_numbers = true)]
     pub(crate) far: f64,
     /// Full field of view in degrees of every figure.
-    #[arg(long, default_value_t = 60.0)]
+    #[arg(long, default_value_t = 60.0, allow_negative_numbers = true)]
     pub(crate) fov: f64,
 }
 
@@ -452,25 +492,25 @@ fn figure_name(text: &str) -> Result<shadowlab_curves::FigureName, String> {
 #[derive(Debug, Args)]
 pub(crate) struct OptimizerArgs {
     /// Size of the optimizer's low-resolution eye pass, WIDTHxHEIGHT.
-    #[arg(long, value_name = "WxH", value_parser = parse_size, help = format!(
+    #[arg(long, value_name = "WxH", value_parser = parse_size, allow_hyphen_values = true, help = format!(
         "Size of the optimizer's low-resolution eye pass, WIDTHxHEIGHT. Default: {}x{} (CG06 §4)",
         READBACK_SIZE.0, READBACK_SIZE.1
     ))]
     pub(crate) optimal_readback: Option<(u32, u32)>,
     /// Side of the initial map.
-    #[arg(long, value_name = "TEXELS", value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_TARGET_SIZE)), help = format!(
+    #[arg(long, value_name = "TEXELS", allow_negative_numbers = true, value_parser = whole::<1, MAX_TARGET_SIZE>, help = format!(
         "Side of the initial (uniform-limited) map the samples' shadow states are read from, \
          texels. Default: {INITIAL_MAP_RESOLUTION}"
     ))]
     pub(crate) optimal_initial: Option<u32>,
     /// The most iterations.
-    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(0..=i64::from(MAX_OPTIMAL_ITERATIONS)), help = format!(
+    #[arg(long, value_name = "N", allow_negative_numbers = true, value_parser = whole::<0, MAX_OPTIMAL_ITERATIONS>, help = format!(
         "The most iterations of the optimizer's descent (0: the initial fit only). Default: \
          {ITERATIONS} (CG06 §4)"
     ))]
     pub(crate) optimal_iterations: Option<u32>,
     /// The border.
-    #[arg(long, value_name = "FRACTION", value_parser = parse_border, help = format!(
+    #[arg(long, value_name = "FRACTION", value_parser = parse_border, allow_negative_numbers = true, help = format!(
         "The border around the samples, a fraction of the map's side in [0, 0.5). Default: {BORDER}"
     ))]
     pub(crate) optimal_border: Option<f64>,

@@ -7,6 +7,9 @@
 //!   continuity at γ = 0, bad input.
 //! * `render_cli` — `shadowlab render` and `inspect`: the pictures, repeatable, partitions, JSON,
 //!   bad scenes and settings.
+//! * `hostile_cli` — hostile input: malformed OBJ and scene files, special files, absurd flags;
+//!   each refused with exit code 2 (1 for I/O failures), a message naming the cause, and nothing
+//!   written.
 //! * `output_cli` — output sets under faults: rerun, concurrent runs, SIGINT/SIGTERM/SIGKILL, a
 //!   failing write, a full or read-only file system, destinations not shadowlab's, hostile names.
 //! * `warp_cli` — what a user states: `--lambda`, `--n`, `--focus`, the `[shadow]` table and its
@@ -14,6 +17,7 @@
 
 mod analyze_cli;
 mod curves_cli;
+mod hostile_cli;
 mod output_cli;
 mod params_cli;
 mod render_cli;

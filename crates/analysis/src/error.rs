@@ -3,6 +3,7 @@
 
 use std::fmt;
 
+use shadowlab_plot::PlotError;
 use shadowlab_raster::RasterError;
 use shadowlab_shadow::ShadowError;
 use shadowlab_trace::TraceError;
@@ -52,8 +53,8 @@ pub enum AnalysisError {
         /// Triangles in the scene's mesh.
         mesh: usize,
     },
-    /// A figure could not be drawn (the plotting crate's message).
-    Plot(String),
+    /// A figure could not be drawn (`shadowlab-plot`).
+    Plot(PlotError),
     /// A heat-map scale that is not `0 < low < high < ∞`.
     HeatScale {
         /// The lower end given.
@@ -100,7 +101,7 @@ impl fmt::Display for AnalysisError {
                 "the ray-casting hierarchy holds {bvh} triangles but the scene's mesh {mesh}: it \
                  was built over another mesh"
             ),
-            Self::Plot(message) => write!(f, "drawing a figure: {message}"),
+            Self::Plot(e) => write!(f, "drawing a figure: {e}"),
             Self::HeatScale { low, high } => write!(
                 f,
                 "a heat-map scale needs 0 < low < high < ∞, got low = {low}, high = {high}"
@@ -109,7 +110,20 @@ impl fmt::Display for AnalysisError {
     }
 }
 
-impl std::error::Error for AnalysisError {}
+impl std::error::Error for AnalysisError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            Self::Shadow(e) => Some(e),
+            Self::Trace(e) | Self::ShadowRay { error: e, .. } => Some(e),
+            Self::Raster(e) => Some(e),
+            Self::Plot(e) => Some(e),
+            Self::EyeImageSize { .. }
+            | Self::TriangleOutOfRange { .. }
+            | Self::BvhMismatch { .. }
+            | Self::HeatScale { .. } => None,
+        }
+    }
+}
 
 impl From<ShadowError> for AnalysisError {
     fn from(e: ShadowError) -> Self {
@@ -129,8 +143,8 @@ impl From<RasterError> for AnalysisError {
     }
 }
 
-impl From<shadowlab_plot::PlotError> for AnalysisError {
-    fn from(e: shadowlab_plot::PlotError) -> Self {
-        Self::Plot(e.to_string())
+impl From<PlotError> for AnalysisError {
+    fn from(e: PlotError) -> Self {
+        Self::Plot(e)
     }
 }

@@ -3,7 +3,7 @@
 use std::fmt;
 
 /// Why a figure or table could not be produced.
-#[derive(Debug)]
+#[derive(Clone, Debug, PartialEq)]
 #[non_exhaustive]
 pub enum PlotError {
     /// An axis range that cannot be drawn (empty, not finite, or not positive on a log axis).

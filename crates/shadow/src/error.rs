@@ -5,8 +5,10 @@ use std::fmt;
 use shadowlab_hull::HullError;
 use shadowlab_params::ParamError;
 use shadowlab_raster::RasterError;
+use shadowlab_trace::TraceError;
 
 /// A light set-up that cannot be built, with the reason.
+#[non_exhaustive]
 #[derive(Clone, Debug, PartialEq)]
 pub enum ShadowError {
     /// A camera, light or body was rejected by `shadowlab-hull`.
@@ -15,8 +17,8 @@ pub enum ShadowError {
     Parameter(ParamError),
     /// The rasterizer rejected a draw (bad indices, target size).
     Raster(RasterError),
-    /// The ray caster rejected a mesh or a ray (its message).
-    Trace(String),
+    /// The ray caster rejected a mesh or a ray (`shadowlab-trace`).
+    Trace(TraceError),
     /// The focus body B is empty: nothing in the scene bounds can cast a shadow into the view.
     EmptyFocusBody,
     /// The focus body is flat along an axis the shadow map must span (named), so no map fits it.
@@ -41,7 +43,7 @@ impl fmt::Display for ShadowError {
             Self::Geometry(e) => write!(f, "{e}"),
             Self::Parameter(e) => write!(f, "{e}"),
             Self::Raster(e) => write!(f, "{e}"),
-            Self::Trace(e) => f.write_str(e),
+            Self::Trace(e) => write!(f, "{e}"),
             Self::EmptyFocusBody => f.write_str(
                 "the focus body is empty: nothing inside the scene bounds can cast a shadow into the view",
             ),
@@ -58,7 +60,26 @@ impl fmt::Display for ShadowError {
     }
 }
 
-impl std::error::Error for ShadowError {}
+impl std::error::Error for ShadowError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            Self::Geometry(e) => Some(e),
+            Self::Parameter(e) => Some(e),
+            Self::Raster(e) => Some(e),
+            Self::Trace(e) => Some(e),
+            Self::EmptyFocusBody
+            | Self::FlatFocusBody { .. }
+            | Self::NotDefined { .. }
+            | Self::LightInsideFocusBody => None,
+        }
+    }
+}
+
+impl From<TraceError> for ShadowError {
+    fn from(e: TraceError) -> Self {
+        Self::Trace(e)
+    }
+}
 
 impl From<HullError> for ShadowError {
     fn from(e: HullError) -> Self {

@@ -8,6 +8,12 @@ use shadowlab_hull::{LightSpace, NdcDepth, ViewPose};
 use crate::error::ShadowError;
 use crate::input::{Eye, LightSource};
 
+/// The techniques whose map does not depend on the eye's position in light space, only on the
+/// focus body B: the uniform maps (κ = 0, an orthographic fit of B; frustum limiting clips B's
+/// window with V's projection, which needs only V's corners). They are served where the eye lies
+/// on or behind a spot light's plane, where the eye has no position in the spot's space.
+const EYE_FREE_TECHNIQUES: [&str; 2] = ["uniform", "uniform_limited"];
+
 /// Where a light-space technique works: an optional projective pre-transform (a spot light's
 /// view-projection, after which its rays are parallel), then LiSPSM's light space with its origin at
 /// the eye.
@@ -26,9 +32,15 @@ pub(crate) struct LightFrame {
 impl LightFrame {
     /// The frame for `eye` and `light`.
     ///
+    /// For a spot light whose plane the eye does not lie in front of (the eye at the light, or
+    /// behind it), the techniques of [`EYE_FREE_TECHNIQUES`] get the spot's own axes: the viewer
+    /// at the centre of its NDC cube looking along its image's +y, so the map is the spot's
+    /// standard shadow map fitted to B.
+    ///
     /// # Errors
-    /// [`ShadowError::NotDefined`] if the eye is not in front of a spot light (its perspective
-    /// transform would fold the view); geometry errors from `shadowlab-hull`.
+    /// [`ShadowError::NotDefined`] for any other technique if the eye is not in front of a spot
+    /// light (its perspective transform would fold the view); geometry errors from
+    /// `shadowlab-hull`.
     pub(crate) fn new(
         eye: &Eye,
         light: &LightSource,
@@ -41,9 +53,21 @@ impl LightFrame {
                 let e = eye.pose.eye();
                 let h = pre * e.extend(1.0);
                 if h.w <= 0.0 {
+                    if EYE_FREE_TECHNIQUES.contains(&technique) {
+                        // The map does not depend on where the eye is: the spot's own axes serve.
+                        let pose = ViewPose::look_to(DVec3::ZERO, DVec3::Y, DVec3::NEG_Z)?;
+                        return Self::in_space(pre, &pose, DVec3::NEG_Z);
+                    }
                     return Err(ShadowError::NotDefined {
                         technique,
-                        reason: "the eye is behind the spot light's plane".into(),
+                        reason: format!(
+                            "the eye lies at or behind the spot light's position (on the far \
+                             side of the plane through the light perpendicular to its \
+                             direction), where the spot's perspective transform sends the eye to \
+                             infinity and light space has no origin (LiSPSM §3.4); {} and psm \
+                             serve such a light",
+                            EYE_FREE_TECHNIQUES.join(", ")
+                        ),
                     });
                 }
                 let origin = h.truncate() / h.w;
@@ -59,7 +83,13 @@ impl LightFrame {
                 (pre, pose, DVec3::NEG_Z)
             }
         };
-        let space = LightSpace::new(&pose, to_light)?;
+        Self::in_space(pre, &pose, to_light)
+    }
+
+    /// The frame of a viewer at `pose` in the space after `pre`, where the light is directional
+    /// toward `to_light`.
+    fn in_space(pre: DMat4, pose: &ViewPose, to_light: DVec3) -> Result<Self, ShadowError> {
+        let space = LightSpace::new(pose, to_light)?;
         Ok(Self {
             pre,
             rotation: DMat3::from_cols(space.x_axis(), space.y_axis(), space.z_axis()).transpose(),

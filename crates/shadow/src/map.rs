@@ -103,7 +103,7 @@ impl ShadowMap {
             #[expect(clippy::cast_precision_loss, reason = "texel indices are small")]
             let centre = |k: usize| (k as f64 + 0.5) / side as f64 * 2.0 - 1.0;
             let (from, to) = map.texel_ray(centre(i), centre(j));
-            let ray = Ray::new(from, to - from).map_err(|e| ShadowError::Trace(e.to_string()))?;
+            let ray = Ray::new(from, to - from)?;
             let store = |t: f64| {
                 let depth = map.ndc(ray.at(t)).map_or(1.0, |ndc| 0.5 * (ndc.z + 1.0));
                 options.format.decode(options.format.encode(depth))

@@ -160,22 +160,49 @@ pub fn scene_eye(scene: &Scene) -> Eye {
     }
 }
 
-/// What a technique plans from for `light` of `scene`: the scene's camera and box, PSM's near plane
-/// at `nearest_visible_depth`, and the `focus` policy.
+/// The thickness a flat scene box S is given on its flat axes, relative to its largest extent: a
+/// ground plane alone is a scene (nothing casts a shadow, every map must still serve it), but a
+/// box with no volume has no polyhedron to clip the focus body with. 10⁻⁶ is a thousand times
+/// hull's relative snap distance (`Tolerances::DEFAULT`, 10⁻⁹ of the diagonal), so the thickened
+/// box is a body, and small enough to change no map's fit by more than that fraction.
+pub const FLAT_SCENE_THICKNESS: f64 = 1e-6;
+
+/// The thickness a flat scene box is given in units of ε times its largest coordinate magnitude,
+/// where that is more than [`FLAT_SCENE_THICKNESS`] of its extent (a small scene far from the
+/// origin): 64 times hull's `rounding_ulps`, so the box stays thicker than the snap distance.
+pub const FLAT_SCENE_ULPS: f64 = 4096.0;
+
+/// The scene box S of `scene`: its bounds, thickened symmetrically on any axis thinner than the
+/// larger of [`FLAT_SCENE_THICKNESS`] × its largest extent and [`FLAT_SCENE_ULPS`]·ε × its largest
+/// coordinate magnitude, so that a flat scene (a ground plane alone) is served.
 ///
 /// # Errors
-/// [`ShadowError::Geometry`] for a scene box that is not a valid box.
+/// [`ShadowError::Geometry`] for bounds that are not a box (a hand-built scene's).
+pub fn scene_box(scene: &Scene) -> Result<Aabb, ShadowError> {
+    let bounds = scene.bounds();
+    let size = bounds.size();
+    let magnitude = bounds.min.abs().max(bounds.max.abs()).max_element();
+    let thickness =
+        (FLAT_SCENE_THICKNESS * size.max_element()).max(FLAT_SCENE_ULPS * f64::EPSILON * magnitude);
+    let pad = (DVec3::splat(thickness) - size).max(DVec3::ZERO) * 0.5;
+    Ok(Aabb::new(bounds.min - pad, bounds.max + pad)?)
+}
+
+/// What a technique plans from for `light` of `scene`: the scene's camera and box
+/// ([`scene_box`]), PSM's near plane at `nearest_visible_depth`, and the `focus` policy.
+///
+/// # Errors
+/// As [`scene_box`].
 pub fn scene_input(
     scene: &Scene,
     light: &SceneLight,
     nearest_visible_depth: Option<f64>,
     focus: FocusPolicy,
 ) -> Result<PlanInput, ShadowError> {
-    let bounds = scene.bounds();
     Ok(PlanInput {
         eye: scene_eye(scene),
         light: LightSource::from_scene(light),
-        scene: Aabb::new(bounds.min, bounds.max)?,
+        scene: scene_box(scene)?,
         nearest_visible_depth,
         focus,
     })
@@ -254,8 +281,7 @@ pub fn render_shadows(
     let bvh = match (options.plan.technique, bvh) {
         (_, Some(bvh)) => Some(bvh),
         (Technique::Logarithmic(_), None) => {
-            built = Bvh::new(scene.mesh.positions(), scene.mesh.triangles())
-                .map_err(|e| ShadowError::Trace(e.to_string()))?;
+            built = Bvh::new(scene.mesh.positions(), scene.mesh.triangles())?;
             Some(&built)
         }
         _ => None,

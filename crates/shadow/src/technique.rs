@@ -291,7 +291,9 @@ fn stated(spec: &str, name: &str) -> Result<Option<f64>, String> {
         .ok()
         .filter(|v| !v.is_nan())
         .map(Some)
-        .ok_or_else(|| format!("{value:?} in {spec:?} is not a number"))
+        .ok_or_else(|| {
+            format!("{value:?} in {spec:?} is not a number: {name} takes a number > 0, or inf (the uniform map)")
+        })
 }
 
 impl Technique {

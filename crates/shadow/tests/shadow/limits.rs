@@ -252,3 +252,85 @@ fn huge_depth_ranges_stay_finite() {
         }
     }
 }
+
+/// A scene read from scene-file text.
+fn scene(text: &str) -> shadowlab_scene::Scene {
+    shadowlab_scene::parse_scene(text, std::path::Path::new("limits.toml")).expect("a valid scene")
+}
+
+/// Claim: a spot light at the eye (so the eye has no position in the spot's space) is served by
+/// the maps that do not depend on the eye's position — the uniform ones, fitted to B with the
+/// spot's own axes, and PSM — and refused by LiSPSM and the logarithmic map with a reason that
+/// names what does serve it.
+#[test]
+fn a_spot_light_at_the_eye_is_served_by_the_uniform_maps() {
+    let scene = scene(
+        "[camera]\nposition = [0, 2, 5]\ntarget = [0, 0, 0]\n\
+         [[light]]\nkind = \"spot\"\nposition = [0, 2, 5]\ntarget = [0, 0, 0]\n\
+         [[mesh]]\nshape = \"box\"\n[[mesh]]\nshape = \"plane\"\nsize = [10, 10]\n",
+    );
+    let input = shadowlab_shadow::scene_input(&scene, &scene.lights[0], None, FocusPolicy::Light)
+        .expect("a scene box");
+    for technique in [
+        Technique::Uniform,
+        Technique::UniformLimited,
+        Technique::Psm,
+    ] {
+        let setup = plan(&input, technique).unwrap_or_else(|e| panic!("{technique}: {e}"));
+        let centre = setup
+            .mapping
+            .window(DVec3::ZERO)
+            .expect("the box's centre is mapped");
+        assert!(
+            centre.is_finite()
+                && (0.0..=1.0).contains(&centre.x)
+                && (0.0..=1.0).contains(&centre.y),
+            "{technique}: {centre}"
+        );
+    }
+    for technique in [
+        Technique::Lispsm(WarpChoice::Rule(ParameterRule::Lispsm)),
+        Technique::LOGARITHMIC,
+    ] {
+        match plan(&input, technique) {
+            Err(ShadowError::NotDefined { reason, .. }) => assert!(
+                reason.contains("uniform, uniform_limited and psm serve such a light"),
+                "{technique}: {reason}"
+            ),
+            other => panic!("{technique}: {other:?}"),
+        }
+    }
+}
+
+/// Claim: a flat scene — a ground plane alone, under a sun straight overhead or at an angle — is
+/// served by every technique: the scene box is thickened on its flat axis
+/// (`FLAT_SCENE_THICKNESS`), and the plane lies inside it.
+#[test]
+fn a_flat_scene_is_served_by_every_technique() {
+    for direction in ["[0, -1, 0]", "[-1, -2, -1]"] {
+        let scene = scene(&format!(
+            "[[light]]\ndirection = {direction}\n[[mesh]]\nshape = \"plane\"\nsize = [10, 10]\n"
+        ));
+        let scene_box = shadowlab_shadow::scene_box(&scene).expect("a box");
+        let size = scene_box.size();
+        assert!(size.y > 0.0 && size.y <= 1e-5, "{size}");
+        assert!(scene_box.min().y < 0.0 && scene_box.max().y > 0.0);
+        let input =
+            shadowlab_shadow::scene_input(&scene, &scene.lights[0], None, FocusPolicy::Light)
+                .expect("a scene box");
+        for technique in techniques() {
+            if let Ok(setup) = plan(&input, technique) {
+                let centre = setup.mapping.window(DVec3::ZERO).expect("mapped");
+                assert!(centre.is_finite(), "{technique} under {direction}");
+            } else if !matches!(
+                technique,
+                Technique::Lispsm(WarpChoice::Rule(ParameterRule::Glpr))
+            ) {
+                panic!(
+                    "{technique} under {direction}: {:?}",
+                    plan(&input, technique)
+                );
+            }
+        }
+    }
+}
