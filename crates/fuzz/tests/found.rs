@@ -5,9 +5,9 @@
 
 use std::path::Path;
 
-use glam::{DVec2, DVec3};
+use glam::{DMat4, DVec2, DVec3, DVec4};
 use shadowlab_hull::{ConvexHull2, ConvexPolyhedron, Tolerances, convex_hull_2d};
-use shadowlab_raster::{DepthFormat, DepthTarget};
+use shadowlab_raster::{DepthFormat, DepthTarget, RasterOptions, Rasterizer, Triangles};
 
 /// The 2-D hull of points whose coordinates span more than f64's exponent range once rescaled
 /// (1.6e233 beside 8.3e-275) is not convex: debug builds panic at `convex_hull_2d`'s
@@ -110,4 +110,31 @@ fn clearing_to_nan_stores_a_depth_in_range() {
             "{format:?}: {depths:?}"
         );
     }
+}
+
+/// A vertex whose clip-space w is subnormal (1e-320) lies well inside the view (x/w = 0.1), but its
+/// window position comes out infinite (the reciprocal of w overflows): debug builds panic at
+/// `fixed::snapped`'s `debug_assert` ("inf outside the guard band"), release builds saturate the
+/// cast. No triangle is needed: every vertex is transformed. Ten of the raster run's inputs, with
+/// ±∞ or NaN window positions.
+#[test]
+#[ignore = "raster bug found by the `raster` fuzzer, not fixed yet"]
+fn a_vertex_with_subnormal_w_has_a_finite_window_position() {
+    let clip_from_world = DMat4::from_cols(
+        DVec4::X,
+        DVec4::Y,
+        DVec4::Z,
+        DVec4::new(0.0, 0.0, 0.0, 1e-320),
+    );
+    let positions = [DVec3::new(1e-321, 0.0, 0.0)];
+    let mut target = DepthTarget::new(1, 1, DepthFormat::F32).expect("a 1×1 target");
+    let mut rasterizer = Rasterizer::new(RasterOptions::default());
+    let stats = rasterizer
+        .draw_depth(
+            &mut target,
+            Triangles::new(&positions, &[]),
+            &clip_from_world,
+        )
+        .expect("finite input");
+    assert_eq!(stats.triangles, 0);
 }
