@@ -320,9 +320,10 @@ fn apply(
 }
 
 /// Coordinates below this fraction of a point set's largest are flushed to zero before a hull is
-/// taken: within it, the exact predicates' products on the rescaled points cannot underflow. Beyond
-/// it both hulls break (found by this target and reported, docs/fuzzing.md): the 2-D hull returns a
-/// polygon that fails its own validation, the 3-D hull a face without a normal.
+/// taken, so that the checks of exact containment hold: the hulls' predicates themselves flush
+/// below 2^-300 of the largest (shadowlab-hull's `ORIENTATION_FLOOR`, the fix for what this target
+/// found), and without this flush a point set spanning more than that range fails
+/// `validate_contains` by up to the flushed magnitude (open, docs/fuzzing.md).
 const SMALLEST_RELATIVE: f64 = f64::from_bits((1023 - 256) << 52); // 2^-256
 
 /// The largest finite absolute coordinate of `coordinates` times [`SMALLEST_RELATIVE`].

@@ -1,7 +1,8 @@
 //! What the fuzzers found, as reproducers: direct calls where the input reduces to a few values, and
 //! fuzz inputs (`fuzz/found/<target>/`) replayed through their target where it takes a sequence of
-//! operations. Each test fails today and is ignored until the bug is fixed (`cargo test -p
-//! shadowlab-fuzz --test found -- --ignored` runs them); then its input goes into the corpus.
+//! operations. A fixed bug's test runs with the suite; an open bug's test is ignored, its reason
+//! saying so (`cargo test -p shadowlab-fuzz --test found -- --ignored` runs them), until it is
+//! fixed.
 
 use std::path::Path;
 
@@ -14,7 +15,6 @@ use shadowlab_raster::{DepthFormat, DepthTarget, RasterOptions, Rasterizer, Tria
 /// `debug_assert` (`WrongWinding { face: 0 }`), release builds return a polygon that fails
 /// `validate`. The rescaled tiny coordinates underflow, so the "exact" orientations are not.
 #[test]
-#[ignore = "hull bug found by the `hull` fuzzer, not fixed yet"]
 fn hull_2d_of_points_spanning_the_exponent_range_is_convex() {
     let points = [
         DVec2::new(1.752045279773521e133, -2.004348981630468e18),
@@ -33,7 +33,6 @@ fn hull_2d_of_points_spanning_the_exponent_range_is_convex() {
 /// debug builds: "a hull face has a positive area" (`newell_plane`: the face's area vector
 /// underflows to zero and has no direction).
 #[test]
-#[ignore = "hull bug found by the `hull` fuzzer, not fixed yet"]
 fn hull_3d_of_points_with_tiny_coordinates_has_face_normals() {
     let points = [
         DVec3::new(8e-275, 1.0, 1e-300),
@@ -51,7 +50,6 @@ fn hull_3d_of_points_with_tiny_coordinates_has_face_normals() {
 /// Five ordinary points, one with a coordinate of 1e-50, panic in debug builds with the same
 /// message: not an underflow, a face whose area vector comes out zero.
 #[test]
-#[ignore = "hull bug found by the `hull` fuzzer, not fixed yet"]
 fn hull_3d_of_five_points_has_face_normals() {
     let points = [
         DVec3::new(3.125, 3.125, 3.125),
@@ -82,7 +80,7 @@ fn replay(name: &str, target: fn(&[u8])) {
 /// vertex 1e-3 off its face, tolerances `relative = 1e-6`). The most frequent crash of the hull
 /// target: about one in 5 000 inputs.
 #[test]
-#[ignore = "hull bug found by the `hull` fuzzer, not fixed yet"]
+#[ignore = "open hull bug found by the `hull` fuzzer (docs/fuzzing.md): not fixed yet"]
 fn clip_keeps_faces_planar() {
     replay("hull/clip-invalid-body", shadowlab_fuzz::hull);
 }
@@ -91,7 +89,7 @@ fn clip_keeps_faces_planar() {
 /// 3-D hull that `sweep` falls back to is not a closed solid (`NotSolid`, hull3.rs's
 /// `debug_assert`).
 #[test]
-#[ignore = "hull bug found by the `hull` fuzzer, not fixed yet"]
+#[ignore = "open hull bug found by the `hull` fuzzer (docs/fuzzing.md): not fixed yet"]
 fn sweep_gives_a_solid() {
     replay("hull/sweep-not-solid", shadowlab_fuzz::hull);
 }
@@ -99,7 +97,6 @@ fn sweep_gives_a_solid() {
 /// `DepthTarget::clear(NaN)` stores NaN in the reversed-f32 format, so `depths()` returns a depth
 /// outside `[0, 1]` (f32 stores 1 and the unorm formats 0: the formats also disagree on it).
 #[test]
-#[ignore = "raster bug found by the `raster` fuzzer, not fixed yet"]
 fn clearing_to_nan_stores_a_depth_in_range() {
     for format in DepthFormat::ALL {
         let mut target = DepthTarget::new(1, 1, format).expect("a 1×1 target");
@@ -118,7 +115,6 @@ fn clearing_to_nan_stores_a_depth_in_range() {
 /// cast. No triangle is needed: every vertex is transformed. Ten of the raster run's inputs, with
 /// ±∞ or NaN window positions.
 #[test]
-#[ignore = "raster bug found by the `raster` fuzzer, not fixed yet"]
 fn a_vertex_with_subnormal_w_has_a_finite_window_position() {
     let clip_from_world = DMat4::from_cols(
         DVec4::X,

@@ -9,7 +9,7 @@
 
 use glam::DVec4;
 
-use crate::vertex::{Viewport, WindowVertex, code};
+use crate::vertex::{MIN_W, Viewport, WindowVertex, code};
 
 /// The largest polygon clipping a triangle by six planes can produce.
 const MAX_POLYGON: usize = 9;
@@ -91,7 +91,7 @@ pub(crate) fn clip_triangle(
         }
         polygon[..count].copy_from_slice(&next[..count]);
     }
-    if polygon[..count].iter().any(|c| c.w <= 0.0) {
+    if polygon[..count].iter().any(|c| c.w < MIN_W) {
         return;
     }
     let window: Vec<WindowVertex> = polygon[..count]

@@ -19,6 +19,12 @@ use wide::{f64x4, i64x4};
 
 use crate::fixed::{GUARD_BAND, SUBPIXELS_F64, snap, snapped};
 
+/// The smallest clip-space w a vertex inside the clip volume has: the smallest normal f64, whose
+/// reciprocal is finite. A vertex of smaller w (zero, negative, or subnormal — found by the raster
+/// fuzzer: w = 1e-320 gave an infinite window position) is outside the near plane, and a clipped
+/// polygon with one is dropped.
+pub(crate) const MIN_W: f64 = f64::MIN_POSITIVE;
+
 /// Bits of a vertex's clip code: which planes of the clip volume it lies outside of.
 pub(crate) mod code {
     /// Left of the guard band.
@@ -97,9 +103,10 @@ impl Viewport {
         if c.y > gy {
             bits |= code::TOP;
         }
-        // w ≤ 0 is never inside (for a GL projection it means behind the eye, where z < −w holds
-        // anyway); testing it keeps a degenerate (0, 0, 0, 0) from reaching the divide.
-        if c.z < -c.w || c.w <= 0.0 {
+        // w below MIN_W is never inside (for a GL projection w ≤ 0 means behind the eye, where
+        // z < −w holds anyway); testing it keeps a degenerate (0, 0, 0, 0), and a w whose
+        // reciprocal overflows, from reaching the divide.
+        if c.z < -c.w || c.w < MIN_W {
             bits |= code::NEAR;
         }
         if c.z > c.w {
@@ -218,7 +225,7 @@ impl Viewport {
             | bit(x.simd_gt(gx), code::RIGHT)
             | bit(y.simd_lt(-gy), code::BOTTOM)
             | bit(y.simd_gt(gy), code::TOP)
-            | bit(z.simd_lt(-w) | w.simd_le(f64x4::ZERO), code::NEAR)
+            | bit(z.simd_lt(-w) | w.simd_lt(f64x4::splat(MIN_W)), code::NEAR)
             | bit(z.simd_gt(w), code::FAR);
         let finite = wide::bytemuck::cast::<f64x4, i64x4>(finite);
         let not_finite = i64x4::splat(i64::from(code::NOT_FINITE));

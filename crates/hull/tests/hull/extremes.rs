@@ -319,38 +319,3 @@ fn custom_tolerances() {
     assert_eq!(body.vertices().len(), 5);
     assert_eq!(body.validate(&coarse), Ok(()));
 }
-
-/// Found by the hull fuzzer: points spanning 1.6e233 to 8.3e-275 made a non-convex "hull" (the
-/// rescaled tiny coordinates underflowed inside the exact predicate).
-#[test]
-fn a_2d_hull_of_points_spanning_the_exponent_range_is_convex() {
-    let points = [
-        glam::DVec2::new(1.752045279773521e133, -2.004348981630468e18),
-        glam::DVec2::new(1.6161560284831296e233, 8.314698343835115e-275),
-        glam::DVec2::new(0.875, 0.875),
-        glam::DVec2::new(-0.625, -4.2148483248543076e-228),
-    ];
-    let hull = shadowlab_hull::convex_hull_2d(&points).expect("finite points have a hull");
-    if let shadowlab_hull::ConvexHull2::Polygon(polygon) = hull {
-        assert_eq!(polygon.validate(), Ok(()));
-        assert_eq!(polygon.validate_contains(&points), Ok(()));
-    }
-}
-
-/// Found by the hull fuzzer: five points with coordinates down to 5e-324 gave a face whose area
-/// vector underflowed to zero (no normal).
-#[test]
-fn a_3d_hull_of_points_with_tiny_coordinates_has_face_normals() {
-    let points = [
-        glam::DVec3::new(8e-275, 1.0, 1e-300),
-        glam::DVec3::new(8e-275, -1.0, 8e-275),
-        glam::DVec3::new(1e-300, 0.0, 0.5),
-        glam::DVec3::new(0.0, 0.0, 5e-324),
-        glam::DVec3::new(0.5, 0.5, 0.5),
-    ];
-    let tolerances = shadowlab_hull::Tolerances::default();
-    let body = shadowlab_hull::ConvexPolyhedron::from_points(&points, &tolerances)
-        .expect("five points in general position have a hull");
-    assert_eq!(body.validate(&tolerances), Ok(()));
-    assert!(body.faces().iter().all(|f| f.plane().normal().is_finite()));
-}
