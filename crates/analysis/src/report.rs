@@ -371,7 +371,7 @@ pub(crate) fn dominates(p: &Outcome, o: &Outcome) -> bool {
     p.errors.total() <= o.errors.total() && o.time() > p.time() + p.time_spread + o.time_spread
 }
 
-/// The measurements no other defined one dominates ([`dominates`]: as good in misclassified
+/// The measurements no other defined one dominates (as good in misclassified
 /// pixels and faster beyond the measured spread), by time.
 #[must_use]
 pub fn pareto_front(study: &Study) -> Vec<&Measurement> {
