@@ -40,6 +40,22 @@ impl<'a> Checker<'a> {
         Self { path }
     }
 
+    /// [`SceneFileProblem::OutOfRange`] of `field`: its `value` and what it must be.
+    fn out_of_range(
+        &self,
+        field: &str,
+        value: f64,
+        requirement: impl Into<String>,
+    ) -> SceneFileError {
+        self.error(
+            field,
+            SceneFileProblem::OutOfRange {
+                value,
+                requirement: requirement.into(),
+            },
+        )
+    }
+
     /// A [`SceneFileError::Field`] for `field`.
     pub(super) fn error(
         &self,
@@ -128,13 +144,7 @@ impl<'a> Checker<'a> {
         if value >= minimum {
             Ok(value)
         } else {
-            Err(self.error(
-                field,
-                SceneFileProblem::OutOfRange {
-                    value: f64::from(value),
-                    requirement: requirement.into(),
-                },
-            ))
+            Err(self.out_of_range(field, f64::from(value), requirement))
         }
     }
 
@@ -144,15 +154,13 @@ impl<'a> Checker<'a> {
         if self.finite(field, degrees)? >= MIN_ANGLE_DEGREES && degrees < 180.0 {
             Ok(degrees.to_radians())
         } else {
-            Err(self.error(
+            Err(self.out_of_range(
                 field,
-                SceneFileProblem::OutOfRange {
-                    value: degrees,
-                    requirement: format!(
-                        "in [{}, 180) degrees (MIN_ANGLE_DEGREES)",
-                        Shown(MIN_ANGLE_DEGREES)
-                    ),
-                },
+                degrees,
+                format!(
+                    "in [{}, 180) degrees (MIN_ANGLE_DEGREES)",
+                    Shown(MIN_ANGLE_DEGREES)
+                ),
             ))
         }
     }
@@ -162,12 +170,10 @@ impl<'a> Checker<'a> {
         if (1..=MAX_IMAGE_SIDE).contains(&value) {
             Ok(value)
         } else {
-            Err(self.error(
+            Err(self.out_of_range(
                 field,
-                SceneFileProblem::OutOfRange {
-                    value: f64::from(value),
-                    requirement: format!("in 1..={MAX_IMAGE_SIDE} pixels (MAX_IMAGE_SIDE)"),
-                },
+                f64::from(value),
+                format!("in 1..={MAX_IMAGE_SIDE} pixels (MAX_IMAGE_SIDE)"),
             ))
         }
     }
