@@ -75,22 +75,63 @@ fn replay(name: &str, target: fn(&[u8])) {
     target(&std::fs::read(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display())));
 }
 
-/// A box cut by clips, extrusions and sweeps, then clipped by a plane through three points with
-/// coordinates down to 5e-324: `clip` produces a body that fails validation (`NonPlanarFace`, a
-/// vertex 1e-3 off its face, tolerances `relative = 1e-6`). The most frequent crash of the hull
-/// target: about one in 5 000 inputs.
+/// A pyramid 8 193 long (its apex at x = -8192.5, its base a unit square at x = 1), left by
+/// extrusions and a sweep with face planes 1e-3 off its vertices (within the tolerances of its
+/// scale, `relative = 1e-6`), clipped by a plane through three points with coordinates down to
+/// 5e-324: the cut body is 2 long and its inherited planes are 30 times off its own tolerance
+/// (`NonPlanarFace`). Fixed: a cut that does not validate at its own scale is rebuilt as the exact
+/// hull of its vertices. The most frequent crash of the hull target: about one in 5 000 inputs.
 #[test]
-#[ignore = "open hull bug found by the `hull` fuzzer (docs/fuzzing.md): not fixed yet"]
 fn clip_keeps_faces_planar() {
     replay("hull/clip-invalid-body", shadowlab_fuzz::hull);
 }
 
-/// A body near z = 6145 swept toward `(-1, -1, -1)·5e-324` (normalised) with length 2^31: the
-/// 3-D hull that `sweep` falls back to is not a closed solid (`NotSolid`, hull3.rs's
-/// `debug_assert`).
+/// A body near z = 6145 swept toward `-(1, 1, 1)` by 2^31: the exact hull of the swept box's ten
+/// corners came out `NotSolid`, because its volume, the sum of triple products about the vertex
+/// mean (each ~ε·10²⁷ in error for a body 2·10⁹ long and 1 thick) was negative. Fixed: each fan
+/// tetrahedron's determinant is `orient3d`, exact in sign.
 #[test]
-#[ignore = "open hull bug found by the `hull` fuzzer (docs/fuzzing.md): not fixed yet"]
 fn sweep_gives_a_solid() {
+    let points = [
+        DVec3::new(
+            -1239850266.8564003,
+            -1239850266.8564003,
+            -1239844120.8876202,
+        ),
+        DVec3::new(-0.250470118790992, -0.250470118790992, 6148.343768596933),
+        DVec3::new(-0.250470118790992, -1.5000228881835938, 6148.343768596933),
+        DVec3::new(
+            -1239850265.6068475,
+            -1239850266.8564003,
+            -1239844120.8876202,
+        ),
+        DVec3::new(-0.250470118790992, -0.250470118790992, 6144.468757152557),
+        DVec3::new(-0.250470118790992, -1.5000228881835938, 6144.468757152557),
+        DVec3::new(
+            -1239850266.8564003,
+            -1239850266.8564003,
+            -1239844117.0126088,
+        ),
+        DVec3::new(
+            -1239850265.6068475,
+            -1239850266.8564003,
+            -1239844117.0126088,
+        ),
+        DVec3::new(
+            -1239850265.6068475,
+            -1239850265.6068475,
+            -1239844120.8876202,
+        ),
+        DVec3::new(-1.5000228881835933, -1.5000228881835938, 6148.343768596933),
+    ];
+    let tolerances = Tolerances {
+        relative: 1e-13,
+        rounding_ulps: 4.0,
+        validation_factor: 4.0,
+    };
+    let body = ConvexPolyhedron::from_points(&points, &tolerances).expect("a solid hull");
+    assert_eq!(body.validate(&tolerances), Ok(()));
+    assert!(body.volume() > 0.0);
     replay("hull/sweep-not-solid", shadowlab_fuzz::hull);
 }
 

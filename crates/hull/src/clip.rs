@@ -10,8 +10,10 @@
 //! The cap face, on the clip plane, is the loop of the directed edges left without an opposite,
 //! reversed. Vertices within ε are then merged and the topology checked. If a face's kept vertices do
 //! not form one run, or the cap is not one loop, or the merged mesh is not a closed convex solid (all
-//! only possible within ε of a degeneracy), the result is rebuilt as the exact convex hull
-//! ([`crate::hull3`]) of the kept and new vertices.
+//! only possible within ε of a degeneracy), or the result does not validate at its own scale (kept
+//! planes are only as exact as the tolerances of the larger body they came from, found by the hull
+//! fuzzer), the result is rebuilt as the exact convex hull ([`crate::hull3`]) of the kept and new
+//! vertices.
 
 use std::borrow::Cow;
 use std::collections::BTreeMap;
@@ -47,9 +49,10 @@ impl ConvexPolyhedron {
     /// empty or flat within the snap distance of the body's scale. The new face lies on `plane`; every
     /// other face keeps its plane. Vertices within the snap distance of `plane` count as on it; new
     /// vertices are shared by the two faces of each cut edge, and vertices closer than the snap
-    /// distance are merged. In the rare case (found only for bodies a few snap distances thick) where
-    /// this does not give a closed convex solid, the result is the exact hull of the kept and new
-    /// vertices instead.
+    /// distance are merged. In the rare cases where this does not give a closed convex solid (found
+    /// only for bodies a few snap distances thick) or the inherited planes are off the vertices by
+    /// more than the smaller result's tolerances (a cut that shrinks the body a thousandfold), the
+    /// result is the exact hull of the kept and new vertices instead.
     #[must_use]
     pub fn clip(&self, plane: &Plane, tolerances: &Tolerances) -> Option<Self> {
         match clip_checked(self, plane, tolerances) {
@@ -180,10 +183,15 @@ fn clip_with(
         faces.push(Face::new(*face.plane(), kept));
     }
     let rebuilt = if consistent {
-        cap_loop(&faces).and_then(|cap| {
-            faces.push(Face::new(*plane, cap));
-            ConvexPolyhedron::assemble(vertices.clone(), faces, snap)
-        })
+        cap_loop(&faces)
+            .and_then(|cap| {
+                faces.push(Face::new(*plane, cap));
+                ConvexPolyhedron::assemble(vertices.clone(), faces, snap)
+            })
+            // Kept faces keep their planes, which are only as exact as the tolerances of the body's
+            // scale: a cut that shrinks the body a thousandfold can leave them off their vertices by
+            // more than the result's own (smaller) tolerances allow.
+            .filter(|cut| cut.validate(tolerances).is_ok())
     } else {
         None
     };
