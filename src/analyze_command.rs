@@ -6,16 +6,13 @@ use shadowlab_analysis::report::{filter_label, technique_label};
 use shadowlab_analysis::{report, study, sweep, temporal};
 use shadowlab_raster::{DepthFormat, image_out};
 use shadowlab_scene::Scene;
-use shadowlab_shadow::{Bias, Filter, Splits};
 
 use crate::args::{AnalyzeArgs, MemoryArgs, StudyView, SweepArgs, TemporalArgs};
 use crate::error::CliError;
 use crate::memory::{self, Workload};
 use crate::output::{OutputDir, TEXT_BOUND, png_bound, print_line, slug};
 use crate::progress;
-use crate::shadow_settings::{
-    load_scene_argument, optimizer_flags, parse_techniques, technique_list,
-};
+use crate::shadow_settings::{load_scene_argument, optimizer_flags, technique_list};
 
 /// The output set of a study command: `--out`, or `out/<command>/<scene>` with the scene's name
 /// made safe as a path component; checked before any work.
@@ -36,23 +33,13 @@ fn output_dir(
 pub(crate) fn analyze(args: &AnalyzeArgs) -> Result<(), CliError> {
     let scene = load_scene_argument(args.scene.as_deref())?;
     let techniques = technique_list(&args.techniques, &args.stated)?;
-    let filters = args
-        .filters
-        .iter()
-        .map(|f| {
-            Filter::parse(&f.replace(';', ","))
-                .map_err(|e| CliError::Input(format!("invalid --filters: {e}")))
-        })
-        .collect::<Result<Vec<_>, _>>()?;
     let options = study::StudyOptions {
         techniques,
         resolutions: args.resolutions.clone(),
-        partitions: args.splits.iter().map(|s| *s as usize).collect(),
-        splits: Splits::parse(&args.split_scheme)
-            .map_err(|e| CliError::Input(format!("invalid --split-scheme: {e}")))?,
-        filters,
-        bias: Bias::parse(&args.bias)
-            .map_err(|e| CliError::Input(format!("invalid --bias: {e}")))?,
+        partitions: args.partitions.iter().map(|s| *s as usize).collect(),
+        splits: args.split_scheme,
+        filters: args.filters.clone(),
+        bias: args.bias,
         format: DepthFormat::F32,
         map_truth: args.map_truth,
         // Pictures at the resolution closest to 1024 texels.
@@ -85,7 +72,7 @@ pub(crate) fn analyze(args: &AnalyzeArgs) -> Result<(), CliError> {
             largest_map,
             maps,
             "camera.image",
-            "--resolutions, --splits",
+            "--resolutions, --partitions",
         ),
         args.memory.memory_budget,
     )?;
@@ -174,7 +161,7 @@ fn study_memory(scene: &Scene, view: &StudyView, memory: &MemoryArgs) -> Result<
 
 pub(crate) fn sweep_angle(args: &SweepArgs) -> Result<(), CliError> {
     let scene = study_scene(args.scene.as_deref(), &args.view)?;
-    let techniques = parse_techniques(&args.techniques, "--techniques")?;
+    let techniques = args.techniques.clone();
     let side = if args.behind {
         sweep::Side::Behind
     } else {
@@ -208,7 +195,7 @@ pub(crate) fn sweep_angle(args: &SweepArgs) -> Result<(), CliError> {
 
 pub(crate) fn temporal(args: &TemporalArgs) -> Result<(), CliError> {
     let scene = study_scene(args.scene.as_deref(), &args.view)?;
-    let techniques = parse_techniques(&args.techniques, "--techniques")?;
+    let techniques = args.techniques.clone();
     let out = output_dir(args.out.as_ref(), "temporal", &scene, TEXT_BOUND)?;
     study_memory(&scene, &args.view, &args.memory)?;
     let bar = progress::bar("temporal");

@@ -6,9 +6,9 @@
 use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
-use shadowlab_raster::MAX_TARGET_SIZE;
-use shadowlab_shadow::FocusPolicy;
+use shadowlab_raster::{DepthFormat, MAX_TARGET_SIZE};
 use shadowlab_shadow::optimal::{BORDER, INITIAL_MAP_RESOLUTION, ITERATIONS, READBACK_SIZE};
+use shadowlab_shadow::{Bias, Filter, FocusPolicy, Splits, Technique};
 
 use crate::memory::Bytes;
 
@@ -69,6 +69,36 @@ fn value_not_flag(value: &str) -> Result<String, String> {
     }
 }
 
+/// A technique spec, `TECHNIQUE` or `TECHNIQUE:PARAMETER` ([`Technique::parse_spec`]).
+fn technique_spec(text: &str) -> Result<Technique, String> {
+    Technique::parse_spec(&value_not_flag(text)?)
+}
+
+/// A depth bias ([`Bias::parse`]).
+fn bias_spec(text: &str) -> Result<Bias, String> {
+    Bias::parse(&value_not_flag(text)?)
+}
+
+/// A lookup filter ([`Filter::parse`]).
+fn filter_spec(text: &str) -> Result<Filter, String> {
+    Filter::parse(&value_not_flag(text)?)
+}
+
+/// A filter in a comma-separated list, its own numbers separated by `;` (`disk:16;1.5`).
+fn filter_in_list(text: &str) -> Result<Filter, String> {
+    Filter::parse(&value_not_flag(text)?.replace(';', ","))
+}
+
+/// A split scheme ([`Splits::parse`]).
+fn split_scheme(text: &str) -> Result<Splits, String> {
+    Splits::parse(&value_not_flag(text)?)
+}
+
+/// A depth format by its key ([`DepthFormat::parse`]).
+fn depth_format(text: &str) -> Result<DepthFormat, String> {
+    DepthFormat::parse(&value_not_flag(text)?)
+}
+
 /// The techniques every study command measures by default.
 const ALL_TECHNIQUES: &str =
     "uniform,uniform_limited,psm,lispsm,lispsm:minimax,logarithmic,optimal";
@@ -79,30 +109,30 @@ pub(crate) struct AnalyzeArgs {
     /// A built-in scene or a scene file. Default: outdoor.
     pub(crate) scene: Option<String>,
     /// The techniques, comma-separated, each TECHNIQUE, lispsm:PARAMETER or optimal:refit.
-    #[arg(long, value_delimiter = ',', default_value = ALL_TECHNIQUES, allow_hyphen_values = true, value_parser = value_not_flag)]
-    pub(crate) techniques: Vec<String>,
+    #[arg(long, value_delimiter = ',', default_value = ALL_TECHNIQUES, allow_hyphen_values = true, value_parser = technique_spec)]
+    pub(crate) techniques: Vec<Technique>,
     /// Shadow-map sides, comma-separated (Chong and Gortler's: 750 to 2000).
     #[arg(long, value_delimiter = ',', default_value = "750,1000,1250,1500,1750,2000", allow_negative_numbers = true, value_parser = whole::<1, MAX_TARGET_SIZE>)]
     pub(crate) resolutions: Vec<u32>,
-    /// Partition counts, comma-separated.
-    #[arg(long, value_delimiter = ',', default_value = "1", allow_negative_numbers = true, value_parser = whole::<1, MAX_PARTITIONS>)]
-    pub(crate) splits: Vec<u32>,
+    /// Partition counts (z-partitions, one map each), comma-separated (`--splits` is an alias).
+    #[arg(long, visible_alias = "splits", value_delimiter = ',', default_value = "1", allow_negative_numbers = true, value_parser = whole::<1, MAX_PARTITIONS>)]
+    pub(crate) partitions: Vec<u32>,
     /// How partitions split the depth range: uniform, logarithmic, practical or practical:WEIGHT,
     /// adaptive or adaptive:DELTA.
-    #[arg(long, default_value = "practical:0.5", allow_hyphen_values = true, value_parser = value_not_flag)]
-    pub(crate) split_scheme: String,
+    #[arg(long, default_value = "practical:0.5", allow_hyphen_values = true, value_parser = split_scheme)]
+    pub(crate) split_scheme: Splits,
     /// Filters, comma-separated: nearest, pcf:K, disk:TAPS;RADIUS (use ; between a filter's
     /// numbers here), vsm:K.
     #[arg(
         long,
         value_delimiter = ',',
         default_value = "nearest",
-        allow_hyphen_values = true, value_parser = value_not_flag
+        allow_hyphen_values = true, value_parser = filter_in_list
     )]
-    pub(crate) filters: Vec<String>,
+    pub(crate) filters: Vec<Filter>,
     /// Depth bias of every lookup.
-    #[arg(long, default_value = "slope:2,1e-5", allow_hyphen_values = true, value_parser = value_not_flag)]
-    pub(crate) bias: String,
+    #[arg(long, default_value = "slope:2,1e-5", allow_hyphen_values = true, value_parser = bias_spec)]
+    pub(crate) bias: Bias,
     /// Also compare the exact truth with a 4096² uniform map's, as Chong and Gortler's truth was.
     #[arg(long)]
     pub(crate) map_truth: bool,
@@ -180,10 +210,10 @@ pub(crate) struct SweepArgs {
     #[arg(
         long,
         value_delimiter = ',',
-        allow_hyphen_values = true, value_parser = value_not_flag,
+        allow_hyphen_values = true, value_parser = technique_spec,
         default_value = "uniform,psm,lispsm,lispsm:minimax,lispsm:filament,lispsm:ogre,lispsm:osg,lispsm:osg_vdsm,optimal"
     )]
-    pub(crate) techniques: Vec<String>,
+    pub(crate) techniques: Vec<Technique>,
     #[command(flatten)]
     pub(crate) view: StudyView,
     /// Let the light come from behind the viewer as γ → 0 (default: from in front, the dueling
@@ -209,10 +239,10 @@ pub(crate) struct TemporalArgs {
     #[arg(
         long,
         value_delimiter = ',',
-        allow_hyphen_values = true, value_parser = value_not_flag,
+        allow_hyphen_values = true, value_parser = technique_spec,
         default_value = "uniform,uniform_limited,psm,lispsm,optimal"
     )]
-    pub(crate) techniques: Vec<String>,
+    pub(crate) techniques: Vec<Technique>,
     #[command(flatten)]
     pub(crate) view: StudyView,
     #[command(flatten)]
@@ -231,10 +261,10 @@ pub(crate) struct CompareArgs {
     #[arg(
         long,
         value_delimiter = ',',
-        allow_hyphen_values = true, value_parser = value_not_flag,
+        allow_hyphen_values = true, value_parser = technique_spec,
         default_value = "uniform,uniform_limited,psm,lispsm,logarithmic"
     )]
-    pub(crate) techniques: Vec<String>,
+    pub(crate) techniques: Vec<Technique>,
     /// Shadow-map side in texels.
     #[arg(long, default_value_t = 1024, allow_negative_numbers = true, value_parser = whole::<1, MAX_TARGET_SIZE>)]
     pub(crate) resolution: u32,
@@ -286,9 +316,11 @@ pub(crate) struct ShadowArgs {
     /// A built-in scene (outdoor, dueling-frusta, cad-lattice, chess-spot, bunny) or a scene file
     /// (.toml). Default: outdoor.
     pub(crate) scene: Option<String>,
-    /// The technique: uniform, uniform_limited, psm, lispsm, logarithmic, optimal. Default: lispsm.
-    #[arg(long, allow_hyphen_values = true, value_parser = value_not_flag)]
-    pub(crate) technique: Option<String>,
+    /// The technique: uniform, uniform_limited, psm, lispsm, logarithmic, optimal, or
+    /// TECHNIQUE:PARAMETER. Given here, it replaces the scene's technique and parameter. Default:
+    /// lispsm.
+    #[arg(long, allow_hyphen_values = true, value_parser = technique_spec)]
+    pub(crate) technique: Option<Technique>,
     /// LiSPSM's parameter: lispsm (the paper's n = (z_n + √(z_n·z_f))/sin γ, default), lispsm_dz,
     /// cad, cad_eq17, cad_sin2, gmnpr, glpr, minimax, uniform, model (shadowlab's λ transfer); or
     /// an engine's: filament, ogre, osg, authors2006, osg_vdsm. For logarithmic, the reference
@@ -312,24 +344,24 @@ pub(crate) struct ShadowArgs {
     #[arg(long, allow_negative_numbers = true, value_parser = whole::<1, MAX_TARGET_SIZE>,
           help = format!("Shadow-map side in texels. Default: {DEFAULT_RESOLUTION}"))]
     pub(crate) resolution: Option<u32>,
-    /// Number of z-partitions (one map each). Default: 1.
-    #[arg(long, allow_negative_numbers = true, value_parser = whole::<1, MAX_PARTITIONS>)]
-    pub(crate) splits: Option<u32>,
+    /// Number of z-partitions (one map each; `--splits` is an alias). Default: 1.
+    #[arg(long, visible_alias = "splits", allow_negative_numbers = true, value_parser = whole::<1, MAX_PARTITIONS>)]
+    pub(crate) partitions: Option<u32>,
     /// How partitions split the depth range: uniform, logarithmic, practical or practical:WEIGHT,
     /// adaptive or adaptive:DELTA. Default: practical:0.5.
-    #[arg(long, allow_hyphen_values = true, value_parser = value_not_flag)]
-    pub(crate) split_scheme: Option<String>,
+    #[arg(long, allow_hyphen_values = true, value_parser = split_scheme)]
+    pub(crate) split_scheme: Option<Splits>,
     /// Depth bias: none, constant:OFFSET, slope:FACTOR or slope:FACTOR,CONSTANT, second-depth, midpoint,
     /// dual-depth:MAX (window-depth units). Default: slope:2,1e-5.
-    #[arg(long, allow_hyphen_values = true, value_parser = value_not_flag)]
-    pub(crate) bias: Option<String>,
+    #[arg(long, allow_hyphen_values = true, value_parser = bias_spec)]
+    pub(crate) bias: Option<Bias>,
     /// Filter: nearest, pcf:K, disk:TAPS,RADIUS or disk:TAPS,RADIUS,SEED, vsm:K or
     /// vsm:K,MIN_VARIANCE. Default: nearest.
-    #[arg(long, allow_hyphen_values = true, value_parser = value_not_flag)]
-    pub(crate) filter: Option<String>,
+    #[arg(long, allow_hyphen_values = true, value_parser = filter_spec)]
+    pub(crate) filter: Option<Filter>,
     /// Depth format of the maps: f32, reversed-f32, unorm24, unorm16. Default: f32.
-    #[arg(long, allow_hyphen_values = true, value_parser = value_not_flag)]
-    pub(crate) format: Option<String>,
+    #[arg(long, allow_hyphen_values = true, value_parser = depth_format)]
+    pub(crate) format: Option<DepthFormat>,
     /// The scene-optimized map's settings.
     #[command(flatten)]
     pub(crate) optimizer: OptimizerArgs,

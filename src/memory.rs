@@ -248,7 +248,7 @@ mod tests {
             resolution: 1024,
             maps: 1,
             eye_source: "camera.image",
-            map_source: "--resolution, --splits",
+            map_source: "--resolution, --partitions",
         };
         let base = small.estimate().0;
         for bigger in [

@@ -41,7 +41,7 @@ pub(crate) fn run(args: &RenderArgs) -> Result<(), CliError> {
             resolved.resolution,
             maps,
             "camera.image",
-            "--resolution, --splits",
+            "--resolution, --partitions",
         ),
         args.memory.memory_budget,
     )?;

@@ -9,7 +9,9 @@ use shadowlab_raster::{DepthFormat, MAX_TARGET_SIZE};
 use shadowlab_scene::scene_file::MAX_IMAGE_SIDE;
 use shadowlab_scene::{DEFAULT_SCENE, Scene, ShadowSettings, builtin_scene, load_scene};
 use shadowlab_shadow::optimal::OptimalOptions;
-use shadowlab_shadow::{Bias, Filter, FocusPolicy, Lookup, PlanOptions, Splits, Technique};
+use shadowlab_shadow::{
+    Bias, Filter, FocusPolicy, Lookup, PlanOptions, Splits, Technique, WarpChoice,
+};
 
 use crate::args::{
     DEFAULT_RESOLUTION, MAX_OPTIMAL_ITERATIONS, MAX_PARTITIONS, OptimizerArgs, ShadowArgs,
@@ -29,101 +31,87 @@ pub(crate) struct Resolved {
     pub(crate) format: DepthFormat,
 }
 
-/// A setting's value with where it came from, for the error message: the flag, or the scene's
-/// file and field.
-struct Given<T> {
-    value: T,
-    origin: String,
-}
-
-/// Where settings come from: the flags, then the scene's `[shadow]` table.
-struct Sources<'a> {
+/// The scene's `[shadow]` table, read where no flag is given: each field parsed once, its error
+/// naming the file and the field.
+struct SceneTable<'a> {
     file: String,
-    scene: &'a ShadowSettings,
+    settings: &'a ShadowSettings,
 }
 
-impl Sources<'_> {
-    /// The flag's value if given, else the scene's field's.
-    fn pick<T: Clone>(&self, flag: Option<&T>, field: Option<&T>, name: &str) -> Option<Given<T>> {
+impl SceneTable<'_> {
+    /// The flag's value (already parsed by clap), else the scene field's, parsed by `parse`.
+    fn or_field<F: ?Sized, T>(
+        &self,
+        flag: Option<T>,
+        field: Option<&F>,
+        name: &str,
+        parse: impl FnOnce(&F) -> Result<T, String>,
+    ) -> Result<Option<T>, CliError> {
         match (flag, field) {
-            (Some(v), _) => Some(Given {
-                value: v.clone(),
-                origin: format!("invalid --{name}"),
-            }),
-            (None, Some(v)) => Some(Given {
-                value: v.clone(),
-                origin: format!("{}: shadow.{}", self.file, name.replace('-', "_")),
-            }),
-            (None, None) => None,
+            (Some(value), _) => Ok(Some(value)),
+            (None, Some(field)) => parse(field).map(Some).map_err(|e| self.error(name, &e)),
+            (None, None) => Ok(None),
         }
     }
-}
 
-impl<T> Given<T> {
-    /// The value parsed by `parse`, its error prefixed with where the value came from.
-    fn parse<U>(self, parse: impl FnOnce(T) -> Result<U, String>) -> Result<U, CliError> {
-        parse(self.value).map_err(|e| CliError::Input(format!("{}: {e}", self.origin)))
+    /// An input error naming the file and the field `shadow.NAME`.
+    fn error(&self, name: &str, message: &str) -> CliError {
+        CliError::Input(format!("{}: shadow.{name}: {message}", self.file))
     }
 }
 
-/// Loads the scene and resolves the settings: each value parsed once, where it was given.
+/// Loads the scene and resolves the settings: flags are typed by clap, the scene's fields parsed
+/// here, each once.
 pub(crate) fn resolve(args: &ShadowArgs) -> Result<Resolved, CliError> {
     let scene = load_scene_argument(args.scene.as_deref())?;
     let settings = scene.shadow.clone();
-    let sources = Sources {
+    let table = SceneTable {
         file: scene_label(args.scene.as_deref()),
-        scene: &settings,
+        settings: &settings,
     };
-    let technique = technique(args, &sources)?;
-    let splits = sources
-        .pick(
-            args.split_scheme.as_ref(),
-            settings.split_scheme.as_ref(),
-            "split-scheme",
-        )
-        .map(|g| g.parse(|s| Splits::parse(&s)))
-        .transpose()?
+    let technique = technique(args, &table)?;
+    let splits = table
+        .or_field(
+            args.split_scheme,
+            settings.split_scheme.as_deref(),
+            "split_scheme",
+            Splits::parse,
+        )?
         .unwrap_or(Splits::Practical { weight: 0.5 });
-    let bias = sources
-        .pick(args.bias.as_ref(), settings.bias.as_ref(), "bias")
-        .map(|g| g.parse(|s| Bias::parse(&s)))
-        .transpose()?
+    let bias = table
+        .or_field(args.bias, settings.bias.as_deref(), "bias", Bias::parse)?
         .unwrap_or(Bias::DEFAULT);
-    let filter = sources
-        .pick(args.filter.as_ref(), settings.filter.as_ref(), "filter")
-        .map(|g| g.parse(|s| Filter::parse(&s)))
-        .transpose()?
+    let filter = table
+        .or_field(
+            args.filter,
+            settings.filter.as_deref(),
+            "filter",
+            Filter::parse,
+        )?
         .unwrap_or(Filter::Nearest);
-    let focus = match (args.focus, &settings.focus) {
-        (Some(focus), _) => focus,
-        (None, Some(key)) => FocusPolicy::parse(key)
-            .map_err(|e| CliError::Input(format!("{}: shadow.focus: {e}", sources.file)))?,
-        (None, None) => FocusPolicy::default(),
-    };
-    let format = match &args.format {
-        Some(key) => DepthFormat::ALL
-            .into_iter()
-            .find(|f| f.key_name() == key)
-            .ok_or_else(|| {
-                CliError::Input(format!(
-                    "invalid --format: unknown depth format {key:?}; known: f32, reversed-f32, unorm24, unorm16"
-                ))
-            })?,
-        None => DepthFormat::F32,
-    };
-    let resolution = sources
-        .pick(
-            args.resolution.as_ref(),
+    let focus = table
+        .or_field(
+            args.focus,
+            settings.focus.as_deref(),
+            "focus",
+            FocusPolicy::parse,
+        )?
+        .unwrap_or_default();
+    let format = args.format.unwrap_or(DepthFormat::F32);
+    let resolution = table
+        .or_field(
+            args.resolution,
             settings.resolution.as_ref(),
             "resolution",
-        )
-        .map_or(Ok(DEFAULT_RESOLUTION), |g| {
-            g.parse(|r| in_range(r, 1, MAX_TARGET_SIZE))
-        })?;
-    let partitions = sources
-        .pick(args.splits.as_ref(), settings.splits.as_ref(), "splits")
-        .map_or(Ok(1), |g| g.parse(|k| in_range(k, 1, MAX_PARTITIONS)))?;
-    let optimal = optimizer(&args.optimizer, &sources)?;
+            |&r| in_range(r, 1, MAX_TARGET_SIZE),
+        )?
+        .unwrap_or(DEFAULT_RESOLUTION);
+    let partitions = table
+        .or_field(args.partitions, settings.splits.as_ref(), "splits", |&k| {
+            in_range(k, 1, MAX_PARTITIONS)
+        })?
+        .unwrap_or(1);
+    let optimal = optimizer(&args.optimizer, Some(&table))?;
     Ok(Resolved {
         plan: PlanOptions {
             technique,
@@ -148,99 +136,114 @@ fn in_range(value: u32, lo: u32, hi: u32) -> Result<u32, String> {
     }
 }
 
-/// The technique and its parameter: `--param`, `--lambda` or `--n` (at most one, which clap
-/// checks), else the scene's `parameter`, `lambda` or `n` (at most one).
-fn technique(args: &ShadowArgs, sources: &Sources<'_>) -> Result<Technique, CliError> {
-    let settings = sources.scene;
-    let key = sources.pick(
-        args.technique.as_ref(),
-        settings.technique.as_ref(),
-        "technique",
-    );
+/// The technique and its parameter. `--technique` (a spec, `TECHNIQUE[:PARAMETER]`) replaces the
+/// scene's technique and its parameter; the parameter is then `--param`, `--lambda` or `--n` (at
+/// most one, which clap checks), else, for the scene's own technique, the scene's `parameter`,
+/// `lambda` or `n` (at most one).
+fn technique(args: &ShadowArgs, table: &SceneTable<'_>) -> Result<Technique, CliError> {
+    let settings = table.settings;
     let from_flags = [
-        args.parameter.clone().map(|p| ("param", p)),
-        args.lambda.map(|l| ("lambda", format!("lambda={l}"))),
-        args.near_distance.map(|n| ("n", format!("n={n}"))),
-    ];
-    let from_scene = [
-        settings.parameter.clone().map(|p| ("parameter", p)),
-        settings.lambda.map(|l| ("lambda", format!("lambda={l}"))),
-        settings.n.map(|n| ("n", format!("n={n}"))),
-    ];
-    let given: Vec<_> = from_flags.into_iter().flatten().collect();
-    let parameter = match &given[..] {
-        [(flag, spec)] => Some(Given {
-            value: spec.clone(),
-            origin: format!("invalid --{flag}"),
-        }),
-        _ => {
-            let fields: Vec<_> = from_scene.into_iter().flatten().collect();
-            match &fields[..] {
-                [] => None,
-                [(field, spec)] => Some(Given {
-                    value: spec.clone(),
-                    origin: format!("{}: shadow.{field}", sources.file),
-                }),
-                _ => {
+        args.parameter.clone().map(|p| ("--param", p)),
+        args.lambda.map(|l| ("--lambda", format!("lambda={l}"))),
+        args.near_distance.map(|n| ("--n", format!("n={n}"))),
+    ]
+    .into_iter()
+    .flatten()
+    .next();
+    let (base, parameter) = match args.technique {
+        Some(technique) => (
+            technique,
+            from_flags.map(|(flag, p)| (format!("invalid {flag}"), p)),
+        ),
+        None => {
+            let base = table
+                .or_field(None, settings.technique.as_deref(), "technique", |key| {
+                    Technique::parse_spec(key)
+                })?
+                .unwrap_or(Technique::Lispsm(WarpChoice::PAPER));
+            let from_scene: Vec<_> = [
+                settings.parameter.clone().map(|p| ("parameter", p)),
+                settings.lambda.map(|l| ("lambda", format!("lambda={l}"))),
+                settings.n.map(|n| ("n", format!("n={n}"))),
+            ]
+            .into_iter()
+            .flatten()
+            .collect();
+            let parameter = match (from_flags, &from_scene[..]) {
+                (Some((flag, p)), _) => Some((format!("invalid {flag}"), p)),
+                (None, []) => None,
+                (None, [(field, p)]) => {
+                    Some((format!("{}: shadow.{field}", table.file), p.clone()))
+                }
+                (None, _) => {
                     return Err(CliError::Input(format!(
                         "{}: shadow: give at most one of parameter, lambda and n",
-                        sources.file
+                        table.file
                     )));
                 }
-            }
+            };
+            (base, parameter)
         }
     };
-    let key_name = key.as_ref().map_or("lispsm", |g| g.value.as_str());
-    match Technique::parse(key_name, parameter.as_ref().map(|g| g.value.as_str())) {
-        Ok(technique) => Ok(technique),
-        // The key is checked alone first, so an error with a valid key is the parameter's.
-        Err(e) => {
-            let origin = match (&key, Technique::parse(key_name, None)) {
-                (Some(k), Err(_)) => &k.origin,
-                (None, Err(_)) => "invalid --technique",
-                (_, Ok(_)) => parameter.as_ref().map_or("invalid --param", |g| &g.origin),
-            };
-            Err(CliError::Input(format!("{origin}: {e}")))
-        }
+    let Some((origin, parameter)) = parameter else {
+        return Ok(base);
+    };
+    if let Some(named) = base.parameter() {
+        return Err(CliError::Input(format!(
+            "{origin}: the technique already names its parameter ({}:{named}); give one or the other",
+            base.key()
+        )));
     }
+    Technique::parse(base.key(), Some(&parameter))
+        .map_err(|e| CliError::Input(format!("{origin}: {e}")))
 }
 
-/// The scene-optimized map's settings: each flag, else the scene's field, else the default.
-fn optimizer(args: &OptimizerArgs, sources: &Sources<'_>) -> Result<OptimalOptions, CliError> {
-    let settings = sources.scene;
+/// The scene-optimized map's settings: each flag, else the scene's field (where there is a scene
+/// table), else the default.
+fn optimizer(
+    args: &OptimizerArgs,
+    table: Option<&SceneTable<'_>>,
+) -> Result<OptimalOptions, CliError> {
     let defaults = OptimalOptions::default();
-    let readback = match (args.optimal_readback, &settings.optimal_readback) {
-        (Some(size), _) => size,
-        (None, Some(text)) => parse_size(text).map_err(|e| {
-            CliError::Input(format!("{}: shadow.optimal_readback: {e}", sources.file))
-        })?,
-        (None, None) => defaults.readback,
+    let empty = ShadowSettings::default();
+    let no_table = SceneTable {
+        file: String::new(),
+        settings: &empty,
     };
-    let initial_resolution = sources
-        .pick(
-            args.optimal_initial.as_ref(),
+    let table = table.unwrap_or(&no_table);
+    let settings = table.settings;
+    let readback = table
+        .or_field(
+            args.optimal_readback,
+            settings.optimal_readback.as_deref(),
+            "optimal_readback",
+            parse_size,
+        )?
+        .unwrap_or(defaults.readback);
+    let initial_resolution = table
+        .or_field(
+            args.optimal_initial,
             settings.optimal_initial.as_ref(),
-            "optimal-initial",
-        )
-        .map_or(Ok(defaults.initial_resolution), |g| {
-            g.parse(|r| in_range(r, 1, MAX_TARGET_SIZE))
-        })?;
-    let iterations = sources
-        .pick(
-            args.optimal_iterations.as_ref(),
+            "optimal_initial",
+            |&r| in_range(r, 1, MAX_TARGET_SIZE),
+        )?
+        .unwrap_or(defaults.initial_resolution);
+    let iterations = table
+        .or_field(
+            args.optimal_iterations,
             settings.optimal_iterations.as_ref(),
-            "optimal-iterations",
-        )
-        .map_or(Ok(defaults.iterations), |g| {
-            g.parse(|n| in_range(n, 0, MAX_OPTIMAL_ITERATIONS).map(|n| n as usize))
-        })?;
-    let border = sources
-        .pick(
-            args.optimal_border.as_ref(),
+            "optimal_iterations",
+            |&n| in_range(n, 0, MAX_OPTIMAL_ITERATIONS),
+        )?
+        .map_or(defaults.iterations, |n| n as usize);
+    let border = table
+        .or_field(
+            args.optimal_border,
             settings.optimal_border.as_ref(),
-            "optimal-border",
-        )
-        .map_or(Ok(defaults.border), |g| g.parse(border_fraction))?;
+            "optimal_border",
+            |&b| border_fraction(b),
+        )?
+        .unwrap_or(defaults.border);
     Ok(OptimalOptions {
         readback,
         initial_resolution,
@@ -252,13 +255,7 @@ fn optimizer(args: &OptimizerArgs, sources: &Sources<'_>) -> Result<OptimalOptio
 
 /// The optimizer's settings of a command without a scene table (`compare`, `analyze`).
 pub(crate) fn optimizer_flags(args: &OptimizerArgs) -> Result<OptimalOptions, CliError> {
-    optimizer(
-        args,
-        &Sources {
-            file: String::new(),
-            scene: &ShadowSettings::default(),
-        },
-    )
+    optimizer(args, None)
 }
 
 /// The scene named on the command line: a built-in name, or a path to a scene file.
@@ -284,10 +281,10 @@ fn scene_label(name: Option<&str>) -> String {
 /// The techniques of a list (`--techniques`), then LiSPSM at each stated λ and n (`--lambda`,
 /// `--n`).
 pub(crate) fn technique_list(
-    specs: &[String],
+    techniques: &[Technique],
     stated: &StatedWarps,
 ) -> Result<Vec<Technique>, CliError> {
-    let mut techniques = parse_techniques(specs, "--techniques")?;
+    let mut techniques = techniques.to_vec();
     for (flag, values) in [("--lambda", &stated.lambda), ("--n", &stated.near_distance)] {
         let key = if flag == "--lambda" { "lambda" } else { "n" };
         for value in values {
@@ -298,18 +295,4 @@ pub(crate) fn technique_list(
         }
     }
     Ok(techniques)
-}
-
-/// The techniques named on the command line (`TECHNIQUE` or `TECHNIQUE:PARAMETER`).
-pub(crate) fn parse_techniques(specs: &[String], flag: &str) -> Result<Vec<Technique>, CliError> {
-    specs
-        .iter()
-        .map(|spec| {
-            let (key, parameter) = spec
-                .split_once(':')
-                .map_or((spec.as_str(), None), |(k, p)| (k, Some(p)));
-            Technique::parse(key, parameter)
-                .map_err(|e| CliError::Input(format!("invalid {flag}: {e}")))
-        })
-        .collect()
 }

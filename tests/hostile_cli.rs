@@ -503,19 +503,43 @@ fn absurd_flags_name_the_flag_and_the_range() {
         refused(
             &["render", "--splits", "0", "--out", OUT],
             &[],
-            &["'--splits <SPLITS>'", "1..=16"],
+            &["'--partitions <PARTITIONS>'", "1..=16"],
         ),
         refused(
             &["render", "--splits", "17", "--out", OUT],
             &[],
-            &["'--splits <SPLITS>'", "1..=16"],
+            &["'--partitions <PARTITIONS>'", "1..=16"],
         ),
         refused(
             &["render", "--technique", "bogus", "--out", OUT],
             &[],
             &[
-                "invalid --technique: unknown technique \"bogus\"",
+                "'--technique <TECHNIQUE>': unknown technique \"bogus\"",
                 "known: uniform",
+            ],
+        ),
+        refused(
+            &[
+                "render",
+                "--technique",
+                "lispsm:cad",
+                "--param",
+                "ogre",
+                "--out",
+                OUT,
+            ],
+            &[],
+            &[
+                "invalid --param",
+                "already names its parameter (lispsm:cad); give one or the other",
+            ],
+        ),
+        refused(
+            &["render", "--technique", "psm:cad", "--out", OUT],
+            &[],
+            &[
+                "'--technique <TECHNIQUE>'",
+                "applies to lispsm, logarithmic and optimal only",
             ],
         ),
         refused(
@@ -551,47 +575,47 @@ fn absurd_flags_name_the_flag_and_the_range() {
         refused(
             &["render", "--filter", "pcf:100000", "--out", OUT],
             &[],
-            &["invalid --filter", "from 1 to 64"],
+            &["'--filter <FILTER>'", "from 1 to 64"],
         ),
         refused(
             &["render", "--filter", "pcf:0", "--out", OUT],
             &[],
-            &["invalid --filter", "from 1 to 64"],
+            &["'--filter <FILTER>'", "from 1 to 64"],
         ),
         refused(
             &["render", "--filter", "-3", "--out", OUT],
             &[],
-            &["invalid --filter: unknown filter \"-3\""],
+            &["'--filter <FILTER>': unknown filter \"-3\""],
         ),
         refused(
             &["render", "--filter", "disk:0,1", "--out", OUT],
             &[],
-            &["invalid --filter"],
+            &["'--filter <FILTER>'"],
         ),
         refused(
             &["render", "--bias", "constant:nan", "--out", OUT],
             &[],
-            &["invalid --bias", "not a finite number"],
+            &["'--bias <BIAS>'", "not a finite number"],
         ),
         refused(
             &["render", "--bias", "slope:x", "--out", OUT],
             &[],
-            &["invalid --bias"],
+            &["'--bias <BIAS>'"],
         ),
         refused(
             &["render", "--split-scheme", "practical:2", "--out", OUT],
             &[],
-            &["invalid --split-scheme", "[0, 1]"],
+            &["'--split-scheme <SPLIT_SCHEME>'", "[0, 1]"],
         ),
         refused(
             &["render", "--split-scheme", "adaptive:1", "--out", OUT],
             &[],
-            &["invalid --split-scheme", "greater than 1"],
+            &["'--split-scheme <SPLIT_SCHEME>'", "greater than 1"],
         ),
         refused(
             &["render", "--format", "f16", "--out", OUT],
             &[],
-            &["invalid --format: unknown depth format \"f16\""],
+            &["'--format <FORMAT>': unknown depth format \"f16\""],
         ),
         refused(
             &["render", "--optimal-border", "-1", "--out", OUT],
@@ -626,17 +650,20 @@ fn absurd_flags_name_the_flag_and_the_range() {
         refused(
             &["analyze", "--techniques", "lispsm:n=-1", "--out", OUT],
             &[],
-            &["invalid --techniques", "n = -1 must be greater than 0"],
+            &[
+                "'--techniques <TECHNIQUES>'",
+                "n = -1 must be greater than 0",
+            ],
         ),
         refused(
             &["analyze", "--techniques", "", "--out", OUT],
             &[],
-            &["invalid --techniques"],
+            &["'--techniques <TECHNIQUES>'"],
         ),
         refused(
             &["analyze", "--filters", "pcf:0", "--out", OUT],
             &[],
-            &["invalid --filters", "from 1 to 64"],
+            &["'--filters <FILTERS>'", "from 1 to 64"],
         ),
         refused(
             &["temporal", "--frames", "1", "--out", OUT],
@@ -735,7 +762,7 @@ size = [60.0, 60.0]\n";
                 "render",
                 "--resolution",
                 "16384",
-                "--splits",
+                "--partitions",
                 "16",
                 "--out",
                 OUT,
@@ -743,7 +770,7 @@ size = [60.0, 60.0]\n";
             &[],
             &[
                 "16 map(s) of 16384²",
-                "--resolution, --splits",
+                "--resolution, --partitions",
                 "--memory-budget",
             ],
         ),

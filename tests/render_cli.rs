@@ -113,6 +113,19 @@ fn inspect_reports_the_set_up_as_json() {
     let splits = value["lights"][0]["splits"].as_array().unwrap();
     assert_eq!(splits.len(), 2);
     assert_eq!(splits[1].as_f64(), Some(400.0));
+    // `--technique TECHNIQUE:PARAMETER` is the same set-up as `--technique` with `--param`.
+    let spec = shadowlab(
+        &[
+            "inspect",
+            "outdoor",
+            "--technique",
+            "lispsm:minimax",
+            "--json",
+        ],
+        None,
+    );
+    assert!(spec.status.success(), "{}", stderr(&spec));
+    assert_eq!(stdout(&spec), stdout(&output));
     // Text output names the same things.
     let text = stdout(&shadowlab(
         &["inspect", "outdoor", "--technique", "psm"],

@@ -47,6 +47,20 @@ impl DepthFormat {
         }
     }
 
+    /// The format named by its [`Self::key_name`].
+    ///
+    /// # Errors
+    /// An unknown name, with the known ones.
+    pub fn parse(key: &str) -> Result<Self, String> {
+        Self::ALL
+            .into_iter()
+            .find(|f| f.key_name() == key)
+            .ok_or_else(|| {
+                let known: Vec<&str> = Self::ALL.iter().map(|f| f.key_name()).collect();
+                format!("unknown depth format {key:?}; known: {}", known.join(", "))
+            })
+    }
+
     /// The key of window depth `z` (clamped to `[0, 1]`; a NaN is the far plane, 1, in every
     /// format — the formats' own conversions would disagree on it).
     #[must_use]

@@ -373,6 +373,18 @@ impl Technique {
             )),
         }
     }
+    /// The technique a spec names: `TECHNIQUE` or `TECHNIQUE:PARAMETER` ([`Self::parse`] of the
+    /// parts around the first `:`), as technique lists on the command line and in scene files
+    /// write it.
+    ///
+    /// # Errors
+    /// As [`Self::parse`].
+    pub fn parse_spec(spec: &str) -> Result<Self, String> {
+        let (key, parameter) = spec
+            .split_once(':')
+            .map_or((spec, None), |(key, parameter)| (key, Some(parameter)));
+        Self::parse(key, parameter)
+    }
 }
 
 impl fmt::Display for Technique {
