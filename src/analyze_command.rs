@@ -6,6 +6,7 @@ use shadowlab_analysis::report::{filter_label, technique_label};
 use shadowlab_analysis::{report, study, sweep, temporal};
 use shadowlab_raster::{DepthFormat, image_out};
 use shadowlab_scene::Scene;
+use shadowlab_shadow::{Bias, Splits};
 
 use crate::args::{AnalyzeArgs, MemoryArgs, StudyView, SweepArgs, TemporalArgs};
 use crate::error::CliError;
@@ -37,9 +38,9 @@ pub(crate) fn analyze(args: &AnalyzeArgs) -> Result<(), CliError> {
         techniques,
         resolutions: args.resolutions.clone(),
         partitions: args.partitions.iter().map(|s| *s as usize).collect(),
-        splits: args.split_scheme,
+        splits: args.split_scheme.unwrap_or(Splits::DEFAULT),
         filters: args.filters.clone(),
-        bias: args.bias,
+        bias: args.bias.unwrap_or(Bias::DEFAULT),
         format: DepthFormat::F32,
         map_truth: args.map_truth,
         // Pictures at the resolution closest to 1024 texels.

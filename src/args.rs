@@ -118,9 +118,9 @@ pub(crate) struct AnalyzeArgs {
     #[arg(long, visible_alias = "splits", value_delimiter = ',', default_value = "1", allow_negative_numbers = true, value_parser = whole::<1, MAX_PARTITIONS>)]
     pub(crate) partitions: Vec<u32>,
     /// How partitions split the depth range: uniform, logarithmic, practical or practical:WEIGHT,
-    /// adaptive or adaptive:DELTA.
-    #[arg(long, default_value = "practical:0.5", allow_hyphen_values = true, value_parser = split_scheme)]
-    pub(crate) split_scheme: Splits,
+    /// adaptive or adaptive:DELTA. Default: practical:0.5 (`Splits::DEFAULT`).
+    #[arg(long, allow_hyphen_values = true, value_parser = split_scheme)]
+    pub(crate) split_scheme: Option<Splits>,
     /// Filters, comma-separated: nearest, pcf:K, disk:TAPS;RADIUS (use ; between a filter's
     /// numbers here), vsm:K.
     #[arg(
@@ -130,9 +130,9 @@ pub(crate) struct AnalyzeArgs {
         allow_hyphen_values = true, value_parser = filter_in_list
     )]
     pub(crate) filters: Vec<Filter>,
-    /// Depth bias of every lookup.
-    #[arg(long, default_value = "slope:2,1e-5", allow_hyphen_values = true, value_parser = bias_spec)]
-    pub(crate) bias: Bias,
+    /// Depth bias of every lookup. Default: slope:2,1e-5 (`Bias::DEFAULT`).
+    #[arg(long, allow_hyphen_values = true, value_parser = bias_spec)]
+    pub(crate) bias: Option<Bias>,
     /// Also compare the exact truth with a 4096² uniform map's, as Chong and Gortler's truth was.
     #[arg(long)]
     pub(crate) map_truth: bool,

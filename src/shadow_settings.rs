@@ -77,7 +77,7 @@ pub(crate) fn resolve(args: &ShadowArgs) -> Result<Resolved, CliError> {
             "split_scheme",
             Splits::parse,
         )?
-        .unwrap_or(Splits::Practical { weight: 0.5 });
+        .unwrap_or(Splits::DEFAULT);
     let bias = table
         .or_field(args.bias, settings.bias.as_deref(), "bias", Bias::parse)?
         .unwrap_or(Bias::DEFAULT);

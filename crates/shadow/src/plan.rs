@@ -189,6 +189,12 @@ pub enum Splits {
     },
 }
 
+impl Splits {
+    /// shadowlab's default: Zhang et al.'s practical split with weight 0.5, halfway between the
+    /// uniform and the logarithmic split.
+    pub const DEFAULT: Self = Self::Practical { weight: 0.5 };
+}
+
 /// One part of a partitioned shadow: the eye depths it serves (z-partitioning), the part of the
 /// light's view it serves (face partitioning), and its map's set-up.
 #[derive(Clone, Debug, PartialEq)]

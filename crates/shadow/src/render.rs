@@ -47,7 +47,7 @@ impl PlanOptions {
         Self {
             technique,
             partitions: 1,
-            splits: Splits::Practical { weight: 0.5 },
+            splits: Splits::DEFAULT,
             focus: FocusPolicy::Light,
             optimal: OptimalOptions::default(),
         }
