@@ -6,8 +6,10 @@
 //! * [`depth_exr`]: window depth as one f32 channel `Z` — exactly what an f32 target stores.
 //! * [`depth_png16`]: a 16-bit greyscale preview, `round(z·65535)`, far = white.
 //! * [`rgb_png`]: 8-bit colour.
-//! * [`depth_npy`]: the depths as a NumPy array of f32, **row 0 at the bottom** (the one exception,
-//!   so that it lines up with `glReadPixels` dumps).
+//! * [`layers_exr`]: named f32 or u32 channels in one EXR file (the per-pixel exports).
+//! * [`depth_npy`], [`array_npy`]: NumPy arrays (f32 depths; any [`NpyElement`], several channels
+//!   per pixel), **row 0 at the bottom** (the one exception, so that they line up with
+//!   `glReadPixels` dumps).
 
 use std::io::Cursor;
 
@@ -40,12 +42,53 @@ fn check_len(
 /// Window depths as an OpenEXR file with one f32 channel `Z` (each depth rounded to f32, which is
 /// exact for depths read from an f32 target).
 pub fn depth_exr(depths: &[f64], width: u32, height: u32) -> Result<Vec<u8>, RasterError> {
-    use exr::prelude::*;
-    let (w, h) = check_len(depths.len(), width, height, 1)?;
     #[expect(clippy::cast_possible_truncation, reason = "EXR stores f32 depth")]
-    let samples: Vec<f32> = top_down(depths, w, h).map(|z| z as f32).collect();
-    let channel = AnyChannel::new("Z", FlatSamples::F32(samples));
-    let image = Image::from_channels((w, h), AnyChannels::sort(SmallVec::from_vec(vec![channel])));
+    let samples: Vec<f32> = depths.iter().map(|&z| z as f32).collect();
+    layers_exr(&[("Z", ExrLayer::F32(&samples))], width, height)
+}
+
+/// One channel of an EXR file: row-major, row 0 at the bottom, one value per pixel.
+#[derive(Clone, Copy, Debug)]
+pub enum ExrLayer<'a> {
+    /// 32-bit float samples.
+    F32(&'a [f32]),
+    /// 32-bit unsigned samples (e.g. triangle ids).
+    U32(&'a [u32]),
+}
+
+impl ExrLayer<'_> {
+    fn len(&self) -> usize {
+        match self {
+            Self::F32(values) => values.len(),
+            Self::U32(values) => values.len(),
+        }
+    }
+}
+
+/// Named channels as one OpenEXR file, top row first (EXR's own order). EXR sorts channels by
+/// name, so readers find them by name, not position.
+pub fn layers_exr(
+    layers: &[(&str, ExrLayer<'_>)],
+    width: u32,
+    height: u32,
+) -> Result<Vec<u8>, RasterError> {
+    use exr::prelude::*;
+    let mut channels = SmallVec::new();
+    for (name, layer) in layers {
+        let (w, h) = check_len(layer.len(), width, height, 1)?;
+        let samples = match layer {
+            ExrLayer::F32(values) => FlatSamples::F32(top_down(values, w, h).collect()),
+            ExrLayer::U32(values) => FlatSamples::U32(top_down(values, w, h).collect()),
+        };
+        channels.push(AnyChannel::new(*name, samples));
+    }
+    if channels.is_empty() {
+        return Err(RasterError::Encode("an EXR file needs a channel".into()));
+    }
+    let image = Image::from_channels(
+        (width as usize, height as usize),
+        AnyChannels::sort(channels),
+    );
     let mut bytes = Cursor::new(Vec::new());
     image
         .write()
@@ -89,22 +132,63 @@ pub fn rgb_png(pixels: &[[u8; 3]], width: u32, height: u32) -> Result<Vec<u8>, R
 /// Window depths as a NumPy `.npy` file (version 1.0, little-endian f32, shape `(height, width)`,
 /// row 0 at the bottom as GL reads pixels back).
 pub fn depth_npy(depths: &[f64], width: u32, height: u32) -> Result<Vec<u8>, RasterError> {
-    check_len(depths.len(), width, height, 1)?;
-    let mut header =
-        format!("{{'descr': '<f4', 'fortran_order': False, 'shape': ({height}, {width}), }}");
+    #[expect(clippy::cast_possible_truncation, reason = "the file holds f32")]
+    let values: Vec<f32> = depths.iter().map(|&z| z as f32).collect();
+    array_npy(&values, width, height, 1)
+}
+
+/// An element type of a NumPy array file, little-endian.
+pub trait NpyElement: Copy {
+    /// NumPy's type descriptor (`'<f4'`, …).
+    const DESCR: &'static str;
+    /// Appends the value's little-endian bytes.
+    fn put(self, out: &mut Vec<u8>);
+}
+
+macro_rules! npy_element {
+    ($($t:ty => $descr:literal),* $(,)?) => {$(
+        impl NpyElement for $t {
+            const DESCR: &'static str = $descr;
+            fn put(self, out: &mut Vec<u8>) {
+                out.extend_from_slice(&self.to_le_bytes());
+            }
+        }
+    )*};
+}
+
+npy_element!(f32 => "<f4", f64 => "<f8", u32 => "<u4", u8 => "|u1");
+
+/// Row-major values with row 0 at the bottom, `channels` per pixel, as a NumPy `.npy` file
+/// (version 1.0): shape `(height, width)` for one channel, else `(height, width, channels)`, rows
+/// kept in that order (row 0 at the bottom, as GL reads pixels back).
+pub fn array_npy<T: NpyElement>(
+    values: &[T],
+    width: u32,
+    height: u32,
+    channels: usize,
+) -> Result<Vec<u8>, RasterError> {
+    check_len(values.len(), width, height, channels)?;
+    let shape = if channels == 1 {
+        format!("({height}, {width})")
+    } else {
+        format!("({height}, {width}, {channels})")
+    };
+    let mut header = format!(
+        "{{'descr': '{}', 'fortran_order': False, 'shape': {shape}, }}",
+        T::DESCR
+    );
     // Pad so that the data starts on a multiple of 64 bytes, ending the header with a newline.
     while (10 + header.len() + 1) % 64 != 0 {
         header.push(' ');
     }
     header.push('\n');
     let length = u16::try_from(header.len()).map_err(|e| RasterError::Encode(e.to_string()))?;
-    let mut bytes = Vec::with_capacity(10 + header.len() + 4 * depths.len());
+    let mut bytes = Vec::with_capacity(10 + header.len() + std::mem::size_of::<T>() * values.len());
     bytes.extend_from_slice(b"\x93NUMPY\x01\x00");
     bytes.extend_from_slice(&length.to_le_bytes());
     bytes.extend_from_slice(header.as_bytes());
-    for &z in depths {
-        #[expect(clippy::cast_possible_truncation, reason = "the file holds f32")]
-        bytes.extend_from_slice(&(z as f32).to_le_bytes());
+    for &value in values {
+        value.put(&mut bytes);
     }
     Ok(bytes)
 }
@@ -147,6 +231,62 @@ mod tests {
         let first = f32::from_le_bytes(npy[10 + header_len..14 + header_len].try_into().unwrap());
         assert_eq!(first, 0.0);
         assert_eq!(npy.len(), 10 + header_len + 6 * 4);
+    }
+
+    #[test]
+    fn npy_arrays_have_their_type_and_channels() {
+        let values: Vec<u8> = (0..12).collect();
+        let npy = array_npy(&values, 2, 2, 3).unwrap();
+        let header_len = usize::from(u16::from_le_bytes([npy[8], npy[9]]));
+        let header = std::str::from_utf8(&npy[10..10 + header_len]).unwrap();
+        assert!(
+            header.contains("'descr': '|u1'") && header.contains("'shape': (2, 2, 3)"),
+            "{header}"
+        );
+        assert_eq!(&npy[10 + header_len..], &values[..]);
+        let wide = array_npy(&[1.5_f64, -2.0], 2, 1, 1).unwrap();
+        let header_len = usize::from(u16::from_le_bytes([wide[8], wide[9]]));
+        assert_eq!(
+            f64::from_le_bytes(wide[10 + header_len + 8..].try_into().unwrap()),
+            -2.0
+        );
+        assert!(array_npy(&values, 2, 2, 2).is_err());
+    }
+
+    #[test]
+    fn exr_layers_read_back_by_name_top_row_first() {
+        use exr::prelude::*;
+        let depth = [0.25_f32, 0.5, 0.75, 1.0, 0.0, 0.125];
+        let ids = [7_u32, 8, 9, 10, 11, 12];
+        let bytes = layers_exr(
+            &[("Z", ExrLayer::F32(&depth)), ("id", ExrLayer::U32(&ids))],
+            3,
+            2,
+        )
+        .unwrap();
+        let image = read()
+            .no_deep_data()
+            .largest_resolution_level()
+            .all_channels()
+            .all_layers()
+            .all_attributes()
+            .from_buffered(std::io::Cursor::new(bytes))
+            .unwrap();
+        let channels = &image.layer_data[0].channel_data.list;
+        let by_name = |name: &str| {
+            channels
+                .iter()
+                .find(|c| c.name.to_string() == name)
+                .map(|c| c.sample_data.clone())
+                .unwrap()
+        };
+        assert_eq!(
+            by_name("Z"),
+            FlatSamples::F32(vec![1.0, 0.0, 0.125, 0.25, 0.5, 0.75])
+        );
+        assert_eq!(by_name("id"), FlatSamples::U32(vec![10, 11, 12, 7, 8, 9]));
+        assert!(layers_exr(&[("Z", ExrLayer::F32(&depth[..4]))], 3, 2).is_err());
+        assert!(layers_exr(&[], 3, 2).is_err());
     }
 
     #[test]
