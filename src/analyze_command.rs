@@ -10,6 +10,7 @@ use shadowlab_shadow::{Bias, Splits};
 
 use crate::args::{AnalyzeArgs, MemoryArgs, StudyView, SweepArgs, TemporalArgs};
 use crate::error::CliError;
+use crate::exports::{self, Exporter};
 use crate::memory::{self, Workload};
 use crate::output::{OutputDir, TEXT_BOUND, png_bound, print_line, slug};
 use crate::progress;
@@ -53,11 +54,6 @@ pub(crate) fn analyze(args: &AnalyzeArgs) -> Result<(), CliError> {
         focus: args.focus,
         timing_runs: args.timing_runs,
     };
-    // Two pictures per technique at the picture resolution.
-    let estimate = TEXT_BOUND
-        + 2 * options.techniques.len() as u64
-            * png_bound(scene.camera.width, scene.camera.height, 3);
-    let out = output_dir(args.out.as_ref(), "analyze", &scene, estimate)?;
     let largest_map = options
         .resolutions
         .iter()
@@ -66,6 +62,18 @@ pub(crate) fn analyze(args: &AnalyzeArgs) -> Result<(), CliError> {
         .max()
         .unwrap_or(0);
     let maps = options.partitions.iter().copied().max().unwrap_or(1) as u64;
+    // Two pictures per technique at the picture resolution, and the exports.
+    let export_bound = if args.export {
+        let combinations = study::settings(&options).len() as u64;
+        exports::bound(&scene, combinations, maps, largest_map)
+    } else {
+        0
+    };
+    let estimate = TEXT_BOUND
+        + 2 * options.techniques.len() as u64
+            * png_bound(scene.camera.width, scene.camera.height, 3)
+        + export_bound;
+    let out = output_dir(args.out.as_ref(), "analyze", &scene, estimate)?;
     memory::check(
         &Workload::of(
             &scene,
@@ -78,23 +86,55 @@ pub(crate) fn analyze(args: &AnalyzeArgs) -> Result<(), CliError> {
         args.memory.memory_budget,
     )?;
     let bar = progress::bar("analyze");
+    let mut set = out.begin("analyze")?;
+    let mut exporter = args.export.then(Exporter::new);
+    let mut frame_exported = false;
     // The bar names the combination being measured.
-    let result = study::run(&scene, &options, |done, total, next| {
-        bar.set_length(total as u64);
-        bar.set_position(done as u64);
-        if let Some(setting) = next {
-            bar.set_message(format!(
-                "analyze: {} {}² {} map(s) {}",
-                technique_label(setting.technique),
-                setting.resolution,
-                setting.partitions,
-                filter_label(&setting.filter)
-            ));
-        }
-    });
+    let result = study::run_observed(
+        &scene,
+        &options,
+        |done, total, next| {
+            bar.set_length(total as u64);
+            bar.set_position(done as u64);
+            if let Some(setting) = next {
+                bar.set_message(format!(
+                    "analyze: {} {}² {} map(s) {}",
+                    technique_label(setting.technique),
+                    setting.resolution,
+                    setting.partitions,
+                    filter_label(&setting.filter)
+                ));
+            }
+        },
+        |observed| {
+            let Some(exporter) = exporter.as_mut() else {
+                return Ok(());
+            };
+            let eye = &observed.eye.image;
+            if !frame_exported {
+                exporter.add_frame(&mut set, eye, observed.truth)?;
+                frame_exported = true;
+            }
+            exporter.add_shadows(
+                &mut set,
+                &exports::combination_dir(observed.setting),
+                (eye, observed.truth),
+                (&observed.shadows.lights, &observed.shadows.lit),
+                observed.footprints,
+            )?;
+            Ok::<(), Stop>(())
+        },
+    );
     bar.finish_and_clear();
-    let study = result.map_err(|e| CliError::Input(format!("{}: {e}", scene.name)))?;
-    let report = report::report(&study).map_err(|e| CliError::Failure(anyhow::anyhow!("{e}")))?;
+    let study = result.map_err(|stop| match stop {
+        Stop::Analysis(e) => CliError::Input(format!("{}: {e}", scene.name)),
+        Stop::Output(e) => e,
+    })?;
+    let mut report =
+        report::report(&study).map_err(|e| CliError::Failure(anyhow::anyhow!("{e}")))?;
+    if let Some(exporter) = &exporter {
+        report.json = with_exports(&report.json, exporter.index())?;
+    }
     let mut files = vec![
         ("report.md".to_string(), report.markdown.into_bytes()),
         ("results.csv".to_string(), report.csv.into_bytes()),
@@ -119,7 +159,13 @@ pub(crate) fn analyze(args: &AnalyzeArgs) -> Result<(), CliError> {
             image_out::rgb_png(&pictures.difference, w, h).map_err(failure)?,
         ));
     }
-    out.write("analyze", &files)?;
+    for (name, bytes) in &files {
+        set.add(name, bytes)?;
+    }
+    if let Some(exporter) = exporter {
+        exporter.finish(&mut set)?;
+    }
+    set.finish()?;
     for m in report::pareto_front(&study) {
         let o = m.outcome.as_ref().expect("defined");
         print_line(&format!(
@@ -134,6 +180,33 @@ pub(crate) fn analyze(args: &AnalyzeArgs) -> Result<(), CliError> {
         ))?;
     }
     print_line(&out.path().join("report.md").display().to_string())
+}
+
+/// Why `analyze` stopped: the study's error, or an output's while exporting.
+enum Stop {
+    Analysis(shadowlab_analysis::AnalysisError),
+    Output(CliError),
+}
+
+impl From<shadowlab_analysis::AnalysisError> for Stop {
+    fn from(error: shadowlab_analysis::AnalysisError) -> Self {
+        Self::Analysis(error)
+    }
+}
+
+impl From<CliError> for Stop {
+    fn from(error: CliError) -> Self {
+        Self::Output(error)
+    }
+}
+
+/// `results.json` with the exports' index added as `"exports"`.
+fn with_exports(json: &str, index: serde_json::Value) -> Result<String, CliError> {
+    let mut value: serde_json::Value = serde_json::from_str(json)
+        .map_err(|e| CliError::Failure(anyhow::anyhow!("results.json: {e}")))?;
+    value["exports"] = index;
+    serde_json::to_string_pretty(&value)
+        .map_err(|e| CliError::Failure(anyhow::anyhow!("results.json: {e}")))
 }
 
 /// The scene of `sweep-angle` and `temporal`, at the eye image size asked for.

@@ -149,6 +149,11 @@ pub(crate) struct AnalyzeArgs {
     /// run's, ± half the range (the Pareto front counts a combination dominated only beyond that).
     #[arg(long, value_name = "N", default_value_t = shadowlab_analysis::study::DEFAULT_TIMING_RUNS, value_parser = clap::builder::RangedU64ValueParser::<usize>::new().range(1..=MAX_TIMING_RUNS))]
     pub(crate) timing_runs: usize,
+    /// Also write every per-pixel result under export/: the eye pass, the exact truth, and per
+    /// combination the lookups and their classes, the texel footprints and the maps' raw depths
+    /// (NPY and EXR, listed in export/index.json and results.json).
+    #[arg(long)]
+    pub(crate) export: bool,
     #[command(flatten)]
     pub(crate) memory: MemoryArgs,
     /// Directory to write into. Default: out/analyze/SCENE.
@@ -373,6 +378,11 @@ pub(crate) struct RenderArgs {
     /// The scene and its shadows.
     #[command(flatten)]
     pub(crate) shadow: ShadowArgs,
+    /// Also write every per-pixel result under export/: the eye pass, the exact truth, the
+    /// lookups and their classes, the texel footprints and the maps' raw depths (NPY and EXR,
+    /// listed in export/index.json).
+    #[arg(long)]
+    pub(crate) export: bool,
     #[command(flatten)]
     pub(crate) memory: MemoryArgs,
     /// Directory to write into (created if missing). Default: out/render/SCENE-TECHNIQUE.

@@ -13,6 +13,7 @@ mod args;
 mod compare_command;
 mod curves_command;
 mod error;
+mod exports;
 mod inspect_command;
 mod memory;
 mod output;

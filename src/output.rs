@@ -319,6 +319,16 @@ impl OutputDir {
     /// Writes `files` (paths relative to the set, `/`-separated) and their manifest as one set,
     /// replacing whatever set was there before as a whole.
     pub(crate) fn write(&self, command: &str, files: &[(String, Vec<u8>)]) -> Result<(), CliError> {
+        let mut set = self.begin(command)?;
+        for (name, bytes) in files {
+            set.add(name, bytes)?;
+        }
+        set.finish()
+    }
+
+    /// Starts a set to be filled file by file ([`OutputSet::add`]) and put in place as a whole by
+    /// [`OutputSet::finish`]; dropped unfinished, it leaves nothing behind.
+    pub(crate) fn begin(&self, command: &str) -> Result<OutputSet<'_>, CliError> {
         self.to.open_parent()?;
         let staged = Staged::new(
             tempfile::Builder::new()
@@ -333,44 +343,15 @@ impl OutputDir {
                 })?
                 .keep(),
         );
-        let mut manifest = Manifest {
-            shadowlab: env!("CARGO_PKG_VERSION").to_string(),
-            command: command.to_string(),
-            files: Vec::with_capacity(files.len()),
-        };
-        for (name, bytes) in files {
-            let relative = Path::new(name);
-            let plain = relative
-                .components()
-                .all(|c| matches!(c, Component::Normal(_)));
-            if !plain || name == MANIFEST_NAME {
-                return Err(CliError::Failure(anyhow::anyhow!(
-                    "internal error: output name {name:?} is not a plain relative path"
-                )));
-            }
-            let path = staged.path.join(relative);
-            if let Some(dir) = path.parent() {
-                std::fs::create_dir_all(dir)
-                    .with_context(|| format!("cannot create directory {}", dir.display()))?;
-            }
-            write_synced(&path, bytes, &self.to.target.join(relative))?;
-            manifest.files.push(ManifestEntry {
-                name: name.clone(),
-                bytes: bytes.len() as u64,
-                sha256: hex(&Sha256::digest(bytes)),
-            });
-        }
-        manifest.files.sort_by(|a, b| a.name.cmp(&b.name));
-        let json = serde_json::to_vec_pretty(&manifest).context("cannot encode the manifest")?;
-        write_synced(
-            &staged.path.join(MANIFEST_NAME),
-            &json,
-            &self.to.target.join(MANIFEST_NAME),
-        )?;
-        sync_directory(&staged.path)?;
-        self.publish(&staged.path)?;
-        sync_directory(&self.to.parent)
-        // `staged` now names the previous set (or nothing); dropping it removes that.
+        Ok(OutputSet {
+            dir: self,
+            staged,
+            manifest: Manifest {
+                shadowlab: env!("CARGO_PKG_VERSION").to_string(),
+                command: command.to_string(),
+                files: Vec::new(),
+            },
+        })
     }
 
     /// Moves the staged set into place: a rename where nothing is, an atomic exchange where a
@@ -443,6 +424,58 @@ impl OutputDir {
                 Err(e) => return Err(moved(e)),
             }
         }
+    }
+}
+
+/// An output set being staged: its files are written (and flushed) as they come, so a set larger
+/// than memory can be written; [`Self::finish`] adds the manifest and moves the set into place.
+pub(crate) struct OutputSet<'a> {
+    dir: &'a OutputDir,
+    staged: Staged,
+    manifest: Manifest,
+}
+
+impl OutputSet<'_> {
+    /// Writes one file of the set (`name` relative to it, `/`-separated).
+    pub(crate) fn add(&mut self, name: &str, bytes: &[u8]) -> Result<(), CliError> {
+        let relative = Path::new(name);
+        let plain = relative
+            .components()
+            .all(|c| matches!(c, Component::Normal(_)));
+        if !plain || name == MANIFEST_NAME || self.manifest.files.iter().any(|f| f.name == name) {
+            return Err(CliError::Failure(anyhow::anyhow!(
+                "internal error: output name {name:?} is not a new plain relative path"
+            )));
+        }
+        let path = self.staged.path.join(relative);
+        if let Some(dir) = path.parent() {
+            std::fs::create_dir_all(dir)
+                .with_context(|| format!("cannot create directory {}", dir.display()))?;
+        }
+        write_synced(&path, bytes, &self.dir.to.target.join(relative))?;
+        self.manifest.files.push(ManifestEntry {
+            name: name.to_string(),
+            bytes: bytes.len() as u64,
+            sha256: hex(&Sha256::digest(bytes)),
+        });
+        Ok(())
+    }
+
+    /// Adds the manifest and moves the set into place, replacing the set that was there.
+    pub(crate) fn finish(mut self) -> Result<(), CliError> {
+        self.manifest.files.sort_by(|a, b| a.name.cmp(&b.name));
+        let json =
+            serde_json::to_vec_pretty(&self.manifest).context("cannot encode the manifest")?;
+        let target = &self.dir.to.target;
+        write_synced(
+            &self.staged.path.join(MANIFEST_NAME),
+            &json,
+            &target.join(MANIFEST_NAME),
+        )?;
+        sync_directory(&self.staged.path)?;
+        self.dir.publish(&self.staged.path)?;
+        sync_directory(&self.dir.to.parent)
+        // `staged` now names the previous set (or nothing); dropping it removes that.
     }
 }
 

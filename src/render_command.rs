@@ -2,11 +2,15 @@
 
 use std::path::PathBuf;
 
+use shadowlab_analysis::study::{Setting, footprints_of};
+use shadowlab_analysis::truth::{exact_truth, scene_bvh};
 use shadowlab_raster::image_out;
-use shadowlab_shadow::{FrameOptions, render_frame, scene_eye, view};
+use shadowlab_scene::Scene;
+use shadowlab_shadow::{Frame, FrameOptions, render_frame, scene_eye, view};
 
 use crate::args::RenderArgs;
 use crate::error::CliError;
+use crate::exports::{self, Exporter};
 use crate::memory::{self, Workload};
 use crate::output::{OutputDir, png_bound, print_line, slug};
 use crate::progress;
@@ -31,8 +35,20 @@ pub(crate) fn run(args: &RenderArgs) -> Result<(), CliError> {
     });
     // The eye view, and per map its depth (16-bit) and its light view (RGB).
     let maps = u64::try_from(resolved.plan.partitions).unwrap_or(u64::MAX);
+    let setting = Setting {
+        technique,
+        resolution: resolved.resolution,
+        partitions: resolved.plan.partitions,
+        filter: resolved.lookup.filter,
+    };
+    let export_bound = if args.export {
+        exports::bound(scene, 1, maps, resolved.resolution)
+    } else {
+        0
+    };
     let estimate = png_bound(scene.camera.width, scene.camera.height, 3)
-        + maps.saturating_mul(png_bound(resolved.resolution, resolved.resolution, 2 + 3));
+        + maps.saturating_mul(png_bound(resolved.resolution, resolved.resolution, 2 + 3))
+        + export_bound;
     let out = OutputDir::check(target, "--out", estimate)?;
     memory::check(
         &Workload::of(
@@ -124,9 +140,43 @@ pub(crate) fn run(args: &RenderArgs) -> Result<(), CliError> {
         t.shadow_pass.as_secs_f64() * 1e3,
         t.lookup.as_secs_f64() * 1e3
     ))?;
-    out.write("render", &files)?;
+    let mut set = out.begin("render")?;
+    for (name, bytes) in &files {
+        set.add(name, bytes)?;
+    }
+    if args.export {
+        export(&mut set, scene, &frame, &exports::combination_dir(&setting))?;
+    }
+    set.finish()?;
     for (file, _) in &files {
         print_line(&out.path().join(file).display().to_string())?;
     }
+    if args.export {
+        print_line(&out.path().join(exports::EXPORT_DIR).display().to_string())?;
+    }
     Ok(())
+}
+
+/// The frame's per-pixel results (`--export`): eye pass, exact truth, lookups, footprints, maps.
+fn export(
+    set: &mut crate::output::OutputSet<'_>,
+    scene: &Scene,
+    frame: &Frame,
+    combination: &str,
+) -> Result<(), CliError> {
+    let spinner = progress::spinner("render: the exact truth for --export");
+    let truth = scene_bvh(scene).and_then(|bvh| exact_truth(scene, &frame.eye, &bvh));
+    spinner.finish_and_clear();
+    let truth = truth.map_err(|e| CliError::Input(format!("{}: {e}", scene.name)))?;
+    let footprints = footprints_of(scene, &frame.eye, &frame.lights);
+    let mut exporter = Exporter::new();
+    exporter.add_frame(set, &frame.eye, &truth)?;
+    exporter.add_shadows(
+        set,
+        combination,
+        (&frame.eye, &truth),
+        (&frame.lights, &frame.lit),
+        &footprints,
+    )?;
+    exporter.finish(set)
 }

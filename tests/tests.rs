@@ -7,6 +7,7 @@
 //!   continuity at γ = 0, bad input.
 //! * `render_cli` — `shadowlab render` and `inspect`: the pictures, repeatable, partitions, JSON,
 //!   bad scenes and settings.
+//! * `export_cli` — `--export`: per-pixel results that agree with the report and across commands.
 //! * `hostile_cli` — hostile input: malformed OBJ and scene files, special files, absurd flags;
 //!   each refused with exit code 2 (1 for I/O failures), a message naming the cause, and nothing
 //!   written.
@@ -17,6 +18,7 @@
 
 mod analyze_cli;
 mod curves_cli;
+mod export_cli;
 mod hostile_cli;
 mod output_cli;
 mod params_cli;

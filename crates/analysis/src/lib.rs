@@ -8,6 +8,7 @@
 //! | [`truth`] | whether each visible point is lit by each light: exactly, one shadow ray per pixel ([`truth::exact_truth`], `shadowlab-trace`), or from a very fine uniform map ([`truth::map_truth`]) | CG06 §5 (map truth) |
 //! | [`classify`] | falsely lit and falsely shadowed pixels of a frame against a truth, and their picture | — |
 //! | [`aliasing`] | the texel's footprint on screen per pixel from the Jacobian of screen → shadow map on the visible surface, split into perspective and projection parts | CG06 eqs. 4–6, LiSPSM eq. 1; formulas.md §1, §6 |
+//! | [`export`] | every per-pixel result as NumPy arrays and EXR channels with an index: eye pass, truth, lookups and their classes, footprints, raw map depths | — |
 //! | [`images`] | heat maps of per-pixel values on a logarithmic viridis scale | — |
 //! | [`study`] | one scene, every combination of technique, resolution, partitions and filter, measured against one exact truth in one run | CG06 §5 (their table) |
 //! | [`report`] | a study as `report.md`, `results.csv`, `results.json` and a Pareto plot of time against misclassified pixels | — |
@@ -43,6 +44,7 @@
 pub mod aliasing;
 pub mod classify;
 mod error;
+pub mod export;
 pub mod images;
 pub mod report;
 pub mod study;

@@ -7,8 +7,8 @@ use shadowlab_raster::{DepthFormat, EyeImage, NO_TRIANGLE};
 use shadowlab_scene::Scene;
 use shadowlab_shadow::optimal::OptimalOptions;
 use shadowlab_shadow::{
-    Bias, Filter, FocusPolicy, FrameOptions, Lookup, PlanOptions, ShadowError, Shadows, Splits,
-    Technique, Timings, eye_pass, render_shadows, scene_eye, serving,
+    Bias, Filter, FocusPolicy, FrameOptions, LightShadow, Lookup, PlanOptions, ShadowError,
+    Shadows, Splits, Technique, Timings, eye_pass, render_shadows, scene_eye, serving,
 };
 use shadowlab_trace::Bvh;
 
@@ -229,7 +229,17 @@ pub fn frame_footprints(
     eye: &EyeImage,
     shadows: &Shadows,
 ) -> Vec<Option<Footprint>> {
-    let Some(shadow) = shadows.lights.first() else {
+    footprints_of(scene, eye, &shadows.lights)
+}
+
+/// [`frame_footprints`] of the lights' maps (of a [`Shadows`] or a `shadowlab_shadow::Frame`).
+#[must_use]
+pub fn footprints_of(
+    scene: &Scene,
+    eye: &EyeImage,
+    lights: &[LightShadow],
+) -> Vec<Option<Footprint>> {
+    let Some(shadow) = lights.first() else {
         return vec![None; eye.triangle.len()];
     };
     let view = scene_eye(scene);
@@ -294,10 +304,39 @@ fn time_from_runs(outcome: &mut Outcome, runs: &[Timings]) {
 pub fn run(
     scene: &Scene,
     options: &StudyOptions,
-    mut progress: impl FnMut(usize, usize, Option<&Setting>),
+    progress: impl FnMut(usize, usize, Option<&Setting>),
 ) -> Result<Study, AnalysisError> {
+    run_observed(scene, options, progress, |_| Ok(()))
+}
+
+/// One combination's per-pixel results, as [`run_observed`] shows them before it lets them go.
+#[derive(Clone, Copy, Debug)]
+pub struct Observed<'a> {
+    /// The combination.
+    pub setting: &'a Setting,
+    /// The study's eye pass.
+    pub eye: &'a EyePass,
+    /// The exact truth.
+    pub truth: &'a Truth,
+    /// The combination's maps and lookups (its first timing run).
+    pub shadows: &'a Shadows,
+    /// The texel footprint per pixel (first light).
+    pub footprints: &'a [Option<Footprint>],
+}
+
+/// [`run`], showing each defined combination's per-pixel results to `observe` (e.g. to write
+/// them out, [`crate::export`]) before they are dropped; an error from `observe` ends the run.
+///
+/// # Errors
+/// As [`run`], and `observe`'s.
+pub fn run_observed<E: From<AnalysisError>>(
+    scene: &Scene,
+    options: &StudyOptions,
+    mut progress: impl FnMut(usize, usize, Option<&Setting>),
+    mut observe: impl FnMut(&Observed<'_>) -> Result<(), E>,
+) -> Result<Study, E> {
     let start = Instant::now();
-    let eye = EyePass::new(scene)?;
+    let eye = EyePass::new(scene).map_err(AnalysisError::from)?;
     let bvh = scene_bvh(scene)?;
     let truth = exact_truth(scene, &eye.image, &bvh)?;
     let truth_time = start.elapsed();
@@ -331,18 +370,29 @@ pub fn run(
                         difference: difference_image(&truth, &shadows.lit, &eye.image),
                     });
                 }
+                observe(&Observed {
+                    setting,
+                    eye: &eye,
+                    truth: &truth,
+                    shadows: &shadows,
+                    footprints: &per_pixel,
+                })?;
                 let mut measured = outcome(&truth, &shadows, &per_pixel);
                 let mut runs = vec![shadows.timings];
                 // The timing runs need none of the first run's buffers.
                 drop((shadows, per_pixel));
                 for _ in 1..options.timing_runs {
-                    runs.push(render(scene, options, setting, &eye, &bvh)?.timings);
+                    runs.push(
+                        render(scene, options, setting, &eye, &bvh)
+                            .map_err(AnalysisError::from)?
+                            .timings,
+                    );
                 }
                 time_from_runs(&mut measured, &runs);
                 Ok(measured)
             }
             Err(ShadowError::NotDefined { reason, .. }) => Err(reason),
-            Err(e) => return Err(e.into()),
+            Err(e) => return Err(AnalysisError::from(e).into()),
         };
         measurements.push(Measurement {
             setting: setting.clone(),

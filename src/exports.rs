@@ -1,0 +1,121 @@
+//! `--export` (render, analyze): every per-pixel result beside the pictures, under `export/` in
+//! the output set ([`shadowlab_analysis::export`] says what each file holds), with its index
+//! `export/index.json`.
+
+use serde_json::{Value, json};
+use shadowlab_analysis::export::{ExportFile, eye_files, index, shadow_files, truth_files};
+use shadowlab_analysis::report::{filter_label, technique_label};
+use shadowlab_analysis::study::Setting;
+use shadowlab_analysis::truth::Truth;
+use shadowlab_analysis::{AnalysisError, aliasing::Footprint};
+use shadowlab_raster::EyeImage;
+use shadowlab_scene::Scene;
+use shadowlab_shadow::LightShadow;
+
+use crate::error::CliError;
+use crate::output::{OutputSet, slug};
+
+/// The directory of the exports inside an output set.
+pub(crate) const EXPORT_DIR: &str = "export";
+
+/// An upper bound of the bytes the exports of `combinations` combinations take, each with `maps`
+/// maps of at most `largest_map`² texels, for the free-space check: per pixel the eye pass (EXR
+/// f32 ×7 + u32, NPY f64 ×7 + u32), the truth (1 byte per light), per combination the lookups
+/// (5 bytes per light) and footprints (12 bytes twice); per texel 4 bytes twice; plus headers.
+pub(crate) fn bound(scene: &Scene, combinations: u64, maps: u64, largest_map: u32) -> u64 {
+    let pixels = u64::from(scene.camera.width) * u64::from(scene.camera.height);
+    let lights = scene.lights.len() as u64;
+    let texels = u64::from(largest_map) * u64::from(largest_map);
+    let eye = pixels * (7 * 4 + 4 + 7 * 8 + 4) + pixels * lights;
+    let per_combination = pixels * (5 * lights + 24) + maps * lights * texels * 8;
+    let headers = 4096 * (8 + combinations * (4 + 2 * maps * lights));
+    eye.saturating_add(combinations.saturating_mul(per_combination))
+        .saturating_add(headers)
+}
+
+/// The directory of one combination's exports: technique, resolution, partitions and filter.
+pub(crate) fn combination_dir(setting: &Setting) -> String {
+    slug(
+        &format!(
+            "{}-{}-{}p-{}",
+            technique_label(setting.technique),
+            setting.resolution,
+            setting.partitions,
+            filter_label(&setting.filter)
+        ),
+        "combination",
+    )
+}
+
+/// Writes exports into a staged output set as they come, keeping their index.
+pub(crate) struct Exporter {
+    entries: Vec<ExportFile>,
+}
+
+impl Exporter {
+    pub(crate) fn new() -> Self {
+        Self {
+            entries: Vec::new(),
+        }
+    }
+
+    /// Adds `files` (named inside [`EXPORT_DIR`]) to `set`, keeping only their index entries.
+    fn add(&mut self, set: &mut OutputSet<'_>, files: Vec<ExportFile>) -> Result<(), CliError> {
+        for mut file in files {
+            file.name = format!("{EXPORT_DIR}/{}", file.name);
+            set.add(&file.name, &file.bytes)?;
+            file.bytes = Vec::new();
+            self.entries.push(file);
+        }
+        Ok(())
+    }
+
+    /// The eye pass and the exact truth.
+    pub(crate) fn add_frame(
+        &mut self,
+        set: &mut OutputSet<'_>,
+        eye: &EyeImage,
+        truth: &Truth,
+    ) -> Result<(), CliError> {
+        self.add(set, eye_files(eye).map_err(failure)?)?;
+        self.add(set, truth_files(truth, eye).map_err(failure)?)
+    }
+
+    /// One combination's lookups, classes, footprints and maps under `combination`.
+    pub(crate) fn add_shadows(
+        &mut self,
+        set: &mut OutputSet<'_>,
+        combination: &str,
+        (eye, truth): (&EyeImage, &Truth),
+        (lights, lit): (&[LightShadow], &[Vec<f64>]),
+        footprints: &[Option<Footprint>],
+    ) -> Result<(), CliError> {
+        let files =
+            shadow_files(combination, truth, eye, lights, lit, footprints).map_err(failure)?;
+        self.add(set, files)
+    }
+
+    /// The index of everything exported so far.
+    pub(crate) fn index(&self) -> Value {
+        index(&self.entries)
+    }
+
+    /// Writes `export/index.json`: the files with their quantities, types and shapes, and the
+    /// conventions.
+    pub(crate) fn finish(self, set: &mut OutputSet<'_>) -> Result<(), CliError> {
+        let document = json!({
+            "conventions": "npy: row 0 at the bottom (as the eye image and glReadPixels); exr: top \
+                            row first; see shadowlab_analysis::export",
+            "files": self.index(),
+        });
+        let bytes = serde_json::to_vec_pretty(&document).map_err(|e| {
+            CliError::Failure(anyhow::anyhow!("cannot encode the export index: {e}"))
+        })?;
+        set.add(&format!("{EXPORT_DIR}/index.json"), &bytes)
+    }
+}
+
+/// An export that cannot be encoded is an internal failure (the sizes come from the library).
+fn failure(error: AnalysisError) -> CliError {
+    CliError::Failure(anyhow::anyhow!("cannot encode an export: {error}"))
+}
