@@ -135,6 +135,32 @@ fn sweep_gives_a_solid() {
     replay("hull/sweep-not-solid", shadowlab_fuzz::hull);
 }
 
+/// A body's bounds in a light space whose transform carries a vertex beyond f64's range: debug
+/// builds panicked at `Aabb::of_finite_points`'s `debug_assert`, release builds returned infinite
+/// bounds. Found by the 15-minute hull run after the fixes above, 30 s in. Fixed: `bounds_in`,
+/// `transformed_bounds` and `sweep` return `HullError::Overflow`. Writing this test found two more:
+/// a box near 10³⁰⁰ had an infinite extent (its diagonal's squares overflowed: `ZeroSizeBox`), and
+/// one near 10³⁰⁸ an infinite vertex mean (`NotSolid`); both are computed without overflow now.
+#[test]
+fn bounds_beyond_the_range_are_an_error() {
+    let body = ConvexPolyhedron::from_aabb(
+        &shadowlab_hull::Aabb::new(DVec3::splat(1e307), DVec3::splat(1e308)).expect("a box"),
+        &Tolerances::default(),
+    )
+    .expect("a solid");
+    assert_eq!(
+        body.bounds_in(&glam::DAffine3::from_scale(DVec3::splat(2.0))),
+        Err(shadowlab_hull::HullError::Overflow {
+            operation: "bounds_in"
+        })
+    );
+    assert!(matches!(
+        body.sweep(DVec3::X, f64::MAX, &Tolerances::default()),
+        Err(shadowlab_hull::HullError::Overflow { .. })
+    ));
+    replay("hull/bounds-overflow", shadowlab_fuzz::hull);
+}
+
 /// `DepthTarget::clear(NaN)` stores NaN in the reversed-f32 format, so `depths()` returns a depth
 /// outside `[0, 1]` (f32 stores 1 and the unorm formats 0: the formats also disagree on it).
 #[test]

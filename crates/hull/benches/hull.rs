@@ -89,6 +89,7 @@ fn focus_bodies(c: &mut Criterion) {
                 .expect("not empty");
             let ls = LightSpace::new(&pose, sun.to_light().expect("directional")).expect("valid");
             body.bounds_in(&ls.world_to_light(pose.eye()))
+                .expect("in range")
         })
     });
 }

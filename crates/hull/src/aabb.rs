@@ -68,6 +68,26 @@ impl Aabb {
         Self { min, max }
     }
 
+    /// Bounds of points computed by `operation` from finite input, which may have overflowed.
+    ///
+    /// # Errors
+    /// [`HullError::Overflow`] naming `operation` if a coordinate is not finite.
+    pub(crate) fn of_computed_points(
+        points: impl IntoIterator<Item = DVec3>,
+        operation: &'static str,
+    ) -> Result<Self, HullError> {
+        let mut min = DVec3::splat(f64::INFINITY);
+        let mut max = DVec3::splat(f64::NEG_INFINITY);
+        for p in points {
+            if !p.is_finite() {
+                return Err(HullError::Overflow { operation });
+            }
+            min = min.min(p);
+            max = max.max(p);
+        }
+        Ok(Self::of_finite_points([min, max]))
+    }
+
     /// The minimum corner.
     #[must_use]
     pub fn min(&self) -> DVec3 {
@@ -127,8 +147,13 @@ impl Aabb {
     }
 
     /// The bounds of this box's corners mapped by `transform` (in that frame).
-    #[must_use]
-    pub fn transformed_bounds(&self, transform: &DAffine3) -> Self {
-        Self::of_finite_points(self.corners().map(|c| transform.transform_point3(c)))
+    ///
+    /// # Errors
+    /// [`HullError::Overflow`] if a mapped corner lies beyond f64's range.
+    pub fn transformed_bounds(&self, transform: &DAffine3) -> Result<Self, HullError> {
+        Self::of_computed_points(
+            self.corners().map(|c| transform.transform_point3(c)),
+            "transformed_bounds",
+        )
     }
 }

@@ -102,6 +102,12 @@ pub enum HullError {
     /// NDC cube unprojects to a point at infinity or behind the eye (`w <= 0`), e.g. an infinite far
     /// plane.
     UnboundedFrustum,
+    /// An operation's result has coordinates beyond f64's range (finite input, e.g. a body near
+    /// 10³⁰⁸ rotated or swept farther out).
+    Overflow {
+        /// The operation, e.g. `"bounds_in"`, `"sweep"`.
+        operation: &'static str,
+    },
     /// An operation failed for numerical reasons that the documented tolerances should rule out;
     /// this is a bug: please report it with the input.
     Internal {
@@ -119,6 +125,9 @@ impl fmt::Display for HullError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             Self::NonFinite { parameter } => write!(f, "`{parameter}` is not finite"),
+            Self::Overflow { operation } => {
+                write!(f, "the result of `{operation}` lies beyond f64's range")
+            }
             Self::NotPositive { parameter, value } => {
                 write!(f, "`{parameter}` must be positive, got {value}")
             }

@@ -114,6 +114,7 @@ impl ConvexPolyhedron {
     /// # Errors
     /// [`HullError::NonFinite`]/[`HullError::ZeroVector`] naming `to_light`; [`HullError::NonFinite`]
     /// or [`HullError::NotPositive`] naming `length` (zero is accepted and gives the body itself);
+    /// [`HullError::Overflow`] if the swept body reaches beyond f64's range;
     /// [`HullError::Internal`] on a numerical failure (a bug).
     pub fn sweep(
         &self,
@@ -130,8 +131,10 @@ impl ConvexPolyhedron {
             });
         }
         let planes = extrusion_planes(self, Source::Direction(u), Some(length), tolerances);
-        let bounds =
-            Aabb::of_finite_points(self.vertices().iter().flat_map(|&v| [v, v + u * length]));
+        let bounds = Aabb::of_computed_points(
+            self.vertices().iter().flat_map(|&v| [v, v + u * length]),
+            "sweep",
+        )?;
         clip_box(&bounds, &planes, tolerances, "sweep")
     }
 

@@ -18,7 +18,7 @@
 //! let b = shadowlab_hull::focus_body(&view, &scene, &sun, &tolerances)?.expect("B is not empty");
 //! b.validate(&tolerances)?;
 //! let light_space = LightSpace::new(&pose, sun.to_light().expect("directional"))?;
-//! let bounds = b.bounds_in(&light_space.world_to_light(pose.eye()));
+//! let bounds = b.bounds_in(&light_space.world_to_light(pose.eye()))?;
 //! assert!(bounds.size().min_element() > 0.0);
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```

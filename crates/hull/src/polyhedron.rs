@@ -287,11 +287,13 @@ impl ConvexPolyhedron {
         }
     }
 
-    /// The mean of the vertices (a point inside the body).
+    /// The mean of the vertices (a point inside the body). Each vertex is divided by the count
+    /// before summing, so the partial sums never exceed the largest coordinate: finite for every
+    /// body (the plain sum of eight corners near 10³⁰⁸ overflows).
     #[must_use]
     pub fn vertex_mean(&self) -> DVec3 {
         let count = self.vertices.len() as f64;
-        self.vertices.iter().sum::<DVec3>() / count
+        self.vertices.iter().map(|v| *v / count).sum::<DVec3>()
     }
 
     /// The axis-aligned bounds in world space.
@@ -302,12 +304,15 @@ impl ConvexPolyhedron {
 
     /// The axis-aligned bounds in another frame: of the vertices mapped by `world_to_frame` (e.g. a
     /// light-space transform; exact for affine maps since the body is the hull of its vertices).
-    #[must_use]
-    pub fn bounds_in(&self, world_to_frame: &DAffine3) -> Aabb {
-        Aabb::of_finite_points(
+    ///
+    /// # Errors
+    /// [`HullError::Overflow`] if a mapped vertex lies beyond f64's range.
+    pub fn bounds_in(&self, world_to_frame: &DAffine3) -> Result<Aabb, HullError> {
+        Aabb::of_computed_points(
             self.vertices
                 .iter()
                 .map(|v| world_to_frame.transform_point3(*v)),
+            "bounds_in",
         )
     }
 

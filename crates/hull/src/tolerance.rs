@@ -41,7 +41,7 @@ impl Scale {
             };
         }
         Self {
-            extent: (hi - lo).length(),
+            extent: length_without_overflow(hi - lo),
             magnitude: lo.abs().max(hi.abs()).max_element(),
         }
     }
@@ -54,6 +54,17 @@ impl Scale {
             magnitude: self.magnitude.max(other.magnitude),
         }
     }
+}
+
+/// The length of `v` computed on `v` divided by its largest component, so that it is finite for
+/// every finite `v` whose length is (the plain sum of squares overflows from about 10¹⁵⁴ on, and a
+/// body that large got an infinite snap distance; found by the hull fuzzer).
+fn length_without_overflow(v: DVec3) -> f64 {
+    let largest = v.abs().max_element();
+    if largest == 0.0 || !largest.is_finite() {
+        return largest;
+    }
+    largest * (v / largest).length()
 }
 
 /// Every tolerance of the crate, in one place.

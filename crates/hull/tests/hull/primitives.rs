@@ -51,9 +51,19 @@ fn boxes() {
             4
         );
     }
-    let turned = b.transformed_bounds(&DAffine3::from_quat(DQuat::from_rotation_z(
-        std::f64::consts::FRAC_PI_2,
-    )));
+    let turned = b
+        .transformed_bounds(&DAffine3::from_quat(DQuat::from_rotation_z(
+            std::f64::consts::FRAC_PI_2,
+        )))
+        .expect("in range");
+    // A box near f64's largest value, doubled, overflows: an error, not infinite bounds.
+    let huge = Aabb::new(DVec3::splat(1e308), DVec3::splat(1.5e308)).expect("a box");
+    assert_eq!(
+        huge.transformed_bounds(&DAffine3::from_scale(DVec3::splat(2.0))),
+        Err(shadowlab_hull::HullError::Overflow {
+            operation: "transformed_bounds"
+        })
+    );
     assert!((turned.size() - DVec3::new(2.0, 4.0, 1.0)).length() <= 1e-12);
     let body = ConvexPolyhedron::from_aabb(&b, &TOL).expect("solid");
     assert_eq!(body.validate(&TOL), Ok(()));
