@@ -183,7 +183,7 @@ pub fn array_npy<T: NpyElement>(
     }
     header.push('\n');
     let length = u16::try_from(header.len()).map_err(|e| RasterError::Encode(e.to_string()))?;
-    let mut bytes = Vec::with_capacity(10 + header.len() + std::mem::size_of::<T>() * values.len());
+    let mut bytes = Vec::with_capacity(10 + header.len() + std::mem::size_of_val(values));
     bytes.extend_from_slice(b"\x93NUMPY\x01\x00");
     bytes.extend_from_slice(&length.to_le_bytes());
     bytes.extend_from_slice(header.as_bytes());
