@@ -82,7 +82,8 @@ pub(crate) fn analyze(args: &AnalyzeArgs) -> Result<(), CliError> {
             maps,
             "camera.image",
             "--resolutions, --partitions",
-        ),
+        )
+        .exporting(args.export),
         args.memory.memory_budget,
     )?;
     let bar = progress::bar("analyze");

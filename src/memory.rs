@@ -30,6 +30,11 @@ const MAP_BYTES_PER_TEXEL: u64 = 16;
 /// Per texel of the map being rasterized: the tiled depth keys, and the pictures of a map
 /// (`render`).
 const RASTER_BYTES_PER_TEXEL: u64 = 16;
+/// Per eye pixel, added by `--export`: the eye pass's files encoded together (measured: 85 bytes).
+const EXPORT_BYTES_PER_PIXEL: u64 = 96;
+/// Per texel of each kept map, added by `--export`: its depth as f32 and encoded (measured: 4.8
+/// bytes).
+const EXPORT_BYTES_PER_TEXEL: u64 = 8;
 
 /// A number of bytes, parsed from `N`, `NK`, `NM`, `NG` or `NT` (powers of 1024, an optional `iB`
 /// or `B` after the letter) and shown in MiB or GiB.
@@ -101,6 +106,8 @@ pub(crate) struct Workload {
     /// The flags or fields that set each size, for the message.
     pub(crate) eye_source: &'static str,
     pub(crate) map_source: &'static str,
+    /// Whether every per-pixel result is exported (`--export`).
+    pub(crate) export: bool,
 }
 
 impl Workload {
@@ -122,7 +129,13 @@ impl Workload {
             maps,
             eye_source,
             map_source,
+            export: false,
         }
+    }
+
+    /// The workload with `--export`'s encoded files added, if `export`.
+    pub(crate) fn exporting(self, export: bool) -> Self {
+        Self { export, ..self }
     }
 
     /// The estimated peak, in bytes, and its parts.
@@ -133,11 +146,16 @@ impl Workload {
         } else {
             FRAME_BYTES_PER_PIXEL
         };
+        let (export_pixel, export_texel) = if self.export {
+            (EXPORT_BYTES_PER_PIXEL, EXPORT_BYTES_PER_TEXEL)
+        } else {
+            (0, 0)
+        };
         let texels = u64::from(self.resolution) * u64::from(self.resolution);
-        let eye = pixels.saturating_mul(per_pixel);
+        let eye = pixels.saturating_mul(per_pixel + export_pixel);
         let maps = texels.saturating_mul(
             self.maps
-                .saturating_mul(MAP_BYTES_PER_TEXEL)
+                .saturating_mul(MAP_BYTES_PER_TEXEL + export_texel)
                 .saturating_add(RASTER_BYTES_PER_TEXEL),
         );
         let total = BASE_BYTES
@@ -249,6 +267,7 @@ mod tests {
             maps: 1,
             eye_source: "camera.image",
             map_source: "--resolution, --partitions",
+            export: false,
         };
         let base = small.estimate().0;
         for bigger in [
@@ -268,6 +287,7 @@ mod tests {
                 triangles: 10_000_000,
                 ..small.clone()
             },
+            small.clone().exporting(true),
         ] {
             assert!(bigger.estimate().0 > base);
         }

@@ -58,7 +58,8 @@ pub(crate) fn run(args: &RenderArgs) -> Result<(), CliError> {
             maps,
             "camera.image",
             "--resolution, --partitions",
-        ),
+        )
+        .exporting(args.export),
         args.memory.memory_budget,
     )?;
     let spinner = progress::spinner(&format!("render: {technique} {}²", resolved.resolution));

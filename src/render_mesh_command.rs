@@ -27,6 +27,7 @@ pub(crate) fn run(args: &RenderMeshArgs) -> Result<(), CliError> {
             maps: 1,
             eye_source: "--eye-size",
             map_source: "--size",
+            export: false,
         },
         args.memory.memory_budget,
     )?;
