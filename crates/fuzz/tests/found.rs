@@ -161,6 +161,15 @@ fn bounds_beyond_the_range_are_an_error() {
     replay("hull/bounds-overflow", shadowlab_fuzz::hull);
 }
 
+/// A frustum from an ill-conditioned matrix (corners from −3 to 3.6·10¹⁶): the corners its inverse
+/// gives lie 3.4·10¹⁵ off the planes its rows give, so the polyhedron `from_frustum` built failed
+/// validation (`NonPlanarFace`). Found by the second 15-minute hull run at once. Fixed: such a
+/// frustum is `HullError::InconsistentFrustum`.
+#[test]
+fn an_ill_conditioned_frustum_is_refused() {
+    replay("hull/frustum-inconsistent", shadowlab_fuzz::hull);
+}
+
 /// `DepthTarget::clear(NaN)` stores NaN in the reversed-f32 format, so `depths()` returns a depth
 /// outside `[0, 1]` (f32 stores 1 and the unorm formats 0: the formats also disagree on it).
 #[test]

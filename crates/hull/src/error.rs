@@ -102,6 +102,10 @@ pub enum HullError {
     /// NDC cube unprojects to a point at infinity or behind the eye (`w <= 0`), e.g. an infinite far
     /// plane.
     UnboundedFrustum,
+    /// A frustum whose corners (from the inverse matrix) lie off its planes (from the matrix's
+    /// rows) by more than the validation distance: the view-projection matrix is too
+    /// ill-conditioned for the two to agree in f64.
+    InconsistentFrustum,
     /// An operation's result has coordinates beyond f64's range (finite input, e.g. a body near
     /// 10³⁰⁸ rotated or swept farther out).
     Overflow {
@@ -125,6 +129,10 @@ impl fmt::Display for HullError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             Self::NonFinite { parameter } => write!(f, "`{parameter}` is not finite"),
+            Self::InconsistentFrustum => f.write_str(
+                "the frustum's corners lie off its planes: the view-projection matrix is too \
+                 ill-conditioned for f64",
+            ),
             Self::Overflow { operation } => {
                 write!(f, "the result of `{operation}` lies beyond f64's range")
             }

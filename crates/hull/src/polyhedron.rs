@@ -121,7 +121,10 @@ impl ConvexPolyhedron {
     /// becomes a pyramid with its apex at the eye.
     ///
     /// # Errors
-    /// [`HullError::DegeneratePoints`] if the frustum is flat within the snap distance.
+    /// [`HullError::DegeneratePoints`] if the frustum is flat within the snap distance;
+    /// [`HullError::InconsistentFrustum`] if its corners lie off its planes by more than the
+    /// validation distance (a matrix so ill-conditioned that its inverse's corners and its rows'
+    /// planes disagree; found by the hull fuzzer, 10 % off for corners spanning 3 to 3.6·10¹⁶).
     pub fn from_frustum(frustum: &Frustum, tolerances: &Tolerances) -> Result<Self, HullError> {
         let corners = frustum.corners();
         let faces = frustum
@@ -135,7 +138,8 @@ impl ConvexPolyhedron {
             Self::assemble(corners.to_vec(), faces, snap).ok_or(HullError::DegeneratePoints {
                 degeneracy: Degeneracy::Coplanar,
             })?;
-        debug_assert_eq!(body.validate(tolerances), Ok(()));
+        body.validate(tolerances)
+            .map_err(|_| HullError::InconsistentFrustum)?;
         Ok(body)
     }
 
