@@ -170,6 +170,26 @@ fn an_ill_conditioned_frustum_is_refused() {
     replay("hull/frustum-inconsistent", shadowlab_fuzz::hull);
 }
 
+/// A box 3.6·10⁻¹⁸⁰ on a side: the distance of two corners, `sqrt(dx²)`, underflowed to 0, so
+/// `validate` called them duplicates (`DuplicateVertex`). Found by the third 15-minute hull run.
+/// Fixed: every distance compared with the snap distance is taken on the difference divided by its
+/// largest component, and the hull's flatness tests run on the rescaled points.
+#[test]
+fn a_tiny_box_has_eight_distinct_corners() {
+    let side = 3.568_571_534_544_457_6e-180;
+    let tolerances = Tolerances {
+        relative: 1e-6,
+        ..Tolerances::DEFAULT
+    };
+    let aabb = shadowlab_hull::Aabb::new(DVec3::splat(-side), DVec3::ZERO).expect("a box");
+    let body = ConvexPolyhedron::from_aabb(&aabb, &tolerances).expect("a solid");
+    assert_eq!(body.validate(&tolerances), Ok(()));
+    let corners: Vec<DVec3> = aabb.corners().to_vec();
+    let hull = ConvexPolyhedron::from_points(&corners, &tolerances).expect("a solid hull");
+    assert_eq!(hull.vertices().len(), 8);
+    replay("hull/tiny-box-duplicates", shadowlab_fuzz::hull);
+}
+
 /// `DepthTarget::clear(NaN)` stores NaN in the reversed-f32 format, so `depths()` returns a depth
 /// outside `[0, 1]` (f32 stores 1 and the unorm formats 0: the formats also disagree on it).
 #[test]

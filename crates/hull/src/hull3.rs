@@ -27,7 +27,7 @@ use crate::error::{Degeneracy, HullError};
 use crate::finite::{flush_tiny, rescale_for};
 use crate::plane::Plane;
 use crate::polyhedron::{ConvexPolyhedron, Face};
-use crate::tolerance::{Scale, Tolerances};
+use crate::tolerance::{Scale, Tolerances, distance};
 
 impl ConvexPolyhedron {
     /// The convex hull of `points`, by quickhull with exact predicates.
@@ -79,11 +79,16 @@ pub(crate) fn hull_with_snap(
             z: flush_tiny(v.z * factor),
         })
         .collect();
-    let Some(simplex) = initial_simplex(&p, snap) else {
+    // The flatness tests measure lengths, cross products and distances: on the rescaled points
+    // (an exact scaling, with the snap distance scaled alike), so tiny or huge coordinates neither
+    // underflow nor overflow.
+    let rescaled: Vec<DVec3> = scaled.iter().map(|c| DVec3::new(c.x, c.y, c.z)).collect();
+    let rescaled_snap = snap * factor;
+    let Some(simplex) = initial_simplex(&rescaled, rescaled_snap) else {
         let degeneracy = if p.len() == 1 {
             Degeneracy::Coincident
         } else {
-            classify_flat(&p, snap)
+            classify_flat(&rescaled, rescaled_snap)
         };
         return degenerate(degeneracy);
     };
@@ -112,7 +117,7 @@ fn deduplicate(points: &[DVec3], snap: f64) -> Vec<usize> {
             .iter()
             .rev()
             .take_while(|&&k| p.x - points[k].x <= snap)
-            .any(|&k| points[k].distance(p) <= snap);
+            .any(|&k| distance(points[k], p) <= snap);
         if !duplicate {
             kept.push(i);
         }

@@ -30,7 +30,7 @@ pub(crate) fn merge_close(points: &[DVec3], distance: f64) -> Vec<usize> {
             if points[j].x - points[i].x > distance {
                 break;
             }
-            if points[i].distance(points[j]) <= distance {
+            if crate::tolerance::distance(points[i], points[j]) <= distance {
                 let (a, b) = (root(&mut parent, i), root(&mut parent, j));
                 let (low, high) = (a.min(b), a.max(b));
                 parent[high] = low;
@@ -48,7 +48,7 @@ pub(crate) fn closest_pair_within(points: &[DVec3], distance: f64) -> Option<(us
             if points[j].x - points[i].x > distance {
                 break;
             }
-            if points[i].distance(points[j]) <= distance {
+            if crate::tolerance::distance(points[i], points[j]) <= distance {
                 return Some((i.min(j), i.max(j)));
             }
         }

@@ -41,7 +41,7 @@ impl Scale {
             };
         }
         Self {
-            extent: length_without_overflow(hi - lo),
+            extent: robust_length(hi - lo),
             magnitude: lo.abs().max(hi.abs()).max_element(),
         }
     }
@@ -56,15 +56,23 @@ impl Scale {
     }
 }
 
-/// The length of `v` computed on `v` divided by its largest component, so that it is finite for
-/// every finite `v` whose length is (the plain sum of squares overflows from about 10¹⁵⁴ on, and a
-/// body that large got an infinite snap distance; found by the hull fuzzer).
-fn length_without_overflow(v: DVec3) -> f64 {
+/// The length of `v`, computed on `v` divided by its largest component so that it neither
+/// overflows nor underflows for any finite `v` whose length is finite: the plain sum of squares
+/// overflows from about 10¹⁵⁴ on (a body that large got an infinite snap distance) and underflows
+/// below about 10⁻¹⁶² (two corners of a box 10⁻¹⁸⁰ wide were 0 apart, so "duplicates"). Both found
+/// by the hull fuzzer.
+pub(crate) fn robust_length(v: DVec3) -> f64 {
     let largest = v.abs().max_element();
     if largest == 0.0 || !largest.is_finite() {
         return largest;
     }
     largest * (v / largest).length()
+}
+
+/// The distance between `a` and `b` ([`robust_length`] of their difference): every comparison of
+/// a distance with the snap distance uses it.
+pub(crate) fn distance(a: DVec3, b: DVec3) -> f64 {
+    robust_length(b - a)
 }
 
 /// Every tolerance of the crate, in one place.
