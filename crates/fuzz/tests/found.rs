@@ -190,6 +190,16 @@ fn a_tiny_box_has_eight_distinct_corners() {
     replay("hull/tiny-box-duplicates", shadowlab_fuzz::hull);
 }
 
+/// The exact hull that a clip falls back to had a sliver face (sides 1.05, 1.05 and 4·10⁻⁷) whose
+/// f64 normal was 5·10⁻¹⁰ rad off, leaving a vertex 1.4·10⁻¹¹ off its plane, above the
+/// validation distance of `relative = 1e-13` (`NonPlanarFace`). Found by the fourth 15-minute
+/// hull run. Fixed: face normals come from the area vector in double-double arithmetic
+/// (`area::loop_normal`).
+#[test]
+fn sliver_faces_of_a_hull_are_planar() {
+    replay("hull/sliver-face-normal", shadowlab_fuzz::hull);
+}
+
 /// `DepthTarget::clear(NaN)` stores NaN in the reversed-f32 format, so `depths()` returns a depth
 /// outside `[0, 1]` (f32 stores 1 and the unorm formats 0: the formats also disagree on it).
 #[test]

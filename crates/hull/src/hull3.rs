@@ -23,6 +23,7 @@ use std::collections::HashMap;
 use glam::DVec3;
 use robust::{Coord3D, orient3d};
 
+use crate::area::loop_normal;
 use crate::error::{Degeneracy, HullError};
 use crate::finite::{flush_tiny, rescale_for};
 use crate::plane::Plane;
@@ -439,7 +440,7 @@ impl Quickhull {
         let faces = loops
             .into_iter()
             .map(|loop_| {
-                let plane = newell_plane(&vertices, &loop_);
+                let plane = loop_plane(&vertices, &loop_);
                 Face::new(plane, loop_)
             })
             .collect();
@@ -447,65 +448,15 @@ impl Quickhull {
     }
 }
 
-/// The area vector of a loop too thin for Newell's sums in f64 (found by the hull fuzzer: three
-/// vertices on one line but for 1e-50 in one coordinate, a true face of the exact hull), as the sum
-/// of its fan triangles' exact 2-D orientations (`robust::orient2d`) on the three coordinate
-/// planes, rescaled and normalised. Zero only for a loop of zero area, which the exact hull never
-/// makes.
-fn exact_area(vertices: &[DVec3], loop_: &[usize]) -> DVec3 {
-    let corners: Vec<DVec3> = loop_.iter().map(|&i| vertices[i]).collect();
-    let largest = corners
+/// The plane of a planar loop: its normal from the loop's area vector in double-double arithmetic
+/// ([`crate::area::loop_normal`], accurate for slivers and for tiny or huge faces), through the
+/// loop's centroid.
+fn loop_plane(vertices: &[DVec3], loop_: &[usize]) -> Plane {
+    let center = loop_
         .iter()
-        .map(|v| v.abs().max_element())
-        .fold(0.0_f64, f64::max);
-    let factor = rescale_for(largest);
-    let project = |v: DVec3, axis: usize| {
-        let v = v * factor;
-        let (u, w) = match axis {
-            0 => (v.y, v.z),
-            1 => (v.z, v.x),
-            _ => (v.x, v.y),
-        };
-        robust::Coord {
-            x: flush_tiny(u),
-            y: flush_tiny(w),
-        }
-    };
-    let component = |axis: usize| {
-        (1..corners.len().saturating_sub(1))
-            .map(|k| {
-                robust::orient2d(
-                    project(corners[0], axis),
-                    project(corners[k], axis),
-                    project(corners[k + 1], axis),
-                )
-            })
-            .sum::<f64>()
-    };
-    let area = DVec3::new(component(0), component(1), component(2));
-    (area * rescale_for(area.abs().max_element())).normalize()
-}
-
-/// The plane of a planar loop by Newell's method about its centroid (accurate for long thin loops),
-/// the offsets from the centroid rescaled by a power of two first so that the area vector of a tiny
-/// face neither underflows nor loses its direction (found by the hull fuzzer: coordinates near
-/// 1e-300 gave a zero area vector).
-fn newell_plane(vertices: &[DVec3], loop_: &[usize]) -> Plane {
-    let n = loop_.len();
-    let center = loop_.iter().map(|&i| vertices[i]).sum::<DVec3>() / n as f64;
-    let offsets: Vec<DVec3> = loop_.iter().map(|&i| vertices[i] - center).collect();
-    let largest = offsets
-        .iter()
-        .map(|d| d.abs().max_element())
-        .fold(0.0_f64, f64::max);
-    let factor = rescale_for(largest);
-    let area: DVec3 = (0..n)
-        .map(|k| (offsets[k] * factor).cross(offsets[(k + 1) % n] * factor))
-        .sum();
-    let mut normal = area.normalize();
-    if !normal.is_finite() {
-        normal = exact_area(vertices, loop_);
-    }
+        .map(|&i| vertices[i] / loop_.len() as f64)
+        .sum::<DVec3>();
+    let normal = loop_normal(vertices, loop_);
     debug_assert!(normal.is_finite(), "a hull face has a positive area");
     Plane::from_unit_normal_point(normal, center)
 }

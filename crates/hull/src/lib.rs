@@ -50,6 +50,7 @@
 #![deny(missing_docs)]
 
 mod aabb;
+mod area;
 mod camera;
 mod clip;
 mod error;
