@@ -3,13 +3,13 @@
 
 use glam::{DVec2, DVec3};
 use shadowlab_hull::{ConvexHull2, convex_hull_2d};
-use shadowlab_raster::NO_TRIANGLE;
+use shadowlab_raster::{EyeImage, NO_TRIANGLE};
 use shadowlab_scene::Scene;
 use tiny_skia::{Color, LineCap, Paint, PathBuilder, Pixmap, Stroke, Transform};
 
 use crate::input::{Eye, LightSource};
 use crate::map::ShadowMap;
-use crate::render::Frame;
+use crate::render::{Frame, LightShadow};
 
 /// Albedos of the mesh groups, in turn (linear, 0–1): muted, distinguishable, printable.
 const PALETTE: [[f64; 3]; 8] = [
@@ -35,10 +35,21 @@ const EDGE_SAMPLES: u32 = 48;
 /// normal turned toward the eye; 8-bit sRGB, row 0 at the bottom.
 #[must_use]
 pub fn shade(frame: &Frame, scene: &Scene) -> Vec<[u8; 3]> {
-    let image = &frame.eye;
+    shade_eye(&frame.eye, &frame.lights, &frame.lit, scene)
+}
+
+/// [`shade`] for an eye pass and the shadows made for it apart (a study's
+/// [`crate::render_shadows`]): `lights` and `lit` as [`crate::Shadows`] holds them.
+#[must_use]
+pub fn shade_eye(
+    image: &EyeImage,
+    lights: &[LightShadow],
+    lit: &[Vec<f64>],
+    scene: &Scene,
+) -> Vec<[u8; 3]> {
     let eye = scene.camera.pose.eye();
     let groups = scene.mesh.groups();
-    let direct = DIRECT / frame.lights.len().max(1) as f64;
+    let direct = DIRECT / lights.len().max(1) as f64;
     (0..image.triangle.len())
         .map(|pixel| {
             let triangle = image.triangle[pixel];
@@ -50,10 +61,9 @@ pub fn shade(frame: &Frame, scene: &Scene) -> Vec<[u8; 3]> {
             if normal.dot(eye - position) < 0.0 {
                 normal = -normal;
             }
-            let light: f64 = frame
-                .lights
+            let light: f64 = lights
                 .iter()
-                .zip(&frame.lit)
+                .zip(lit)
                 .map(|(shadow, lit)| {
                     let toward = shadow.light.toward_from(position);
                     let cone = match shadow.light {
