@@ -224,8 +224,8 @@ impl ColourBar {
     fn range_text(&self) -> String {
         let ends = format!(
             "the bar spans {} to {}; values beyond take the end colours",
-            format_value(self.low),
-            format_value(self.high)
+            format_tick(self.low),
+            format_tick(self.high)
         );
         match self.range {
             Some((least, greatest)) => format!(
@@ -582,11 +582,7 @@ mod tests {
     /// A picture of `width × height` pixels coloured by position, with a bar and two swatches.
     fn picture(width: u32, height: u32) -> Picture {
         let pixels = (0..width * height)
-            .map(|k| {
-                #[expect(clippy::cast_possible_truncation, reason = "test colours")]
-                let c = [(k % 251) as u8, (k / 251 % 251) as u8, 200];
-                c
-            })
+            .map(|k| [(k % 251) as u8, (k / 251 % 251) as u8, 200])
             .collect();
         Picture {
             title: "scene <a & b> — \"technique\"".into(),
