@@ -1,5 +1,5 @@
 //! A study written out: `report.md` (tables in the manner of Chong and Gortler's), `report.html`
-//! (the same document as a self-contained page, with the pictures side by side: [`crate::html`]),
+//! (the same document as a self-contained page, with the pictures side by side),
 //! `results.csv`, `results.json`, the Pareto plot of time against misclassified pixels, and the
 //! pictures ([`crate::pictures`]). [`Report::files`] lists every file with its path.
 //!
@@ -34,7 +34,8 @@ pub struct Report {
     /// closed form; `None` when no technique of the study has a view-axis curve (the
     /// scene-optimized map and frustum limiting alone), so there is nothing to draw.
     pub view_axis: Option<(String, Vec<u8>)>,
-    /// `report.html`: the report as one self-contained page ([`crate::html`]).
+    /// `report.html`: the same document as one self-contained page (inline style, script and
+    /// plots; the pictures by relative path), with sortable tables and the pictures side by side.
     pub html: String,
     /// The pictures, raw and annotated, each with its path ([`crate::pictures::files`]).
     pub pictures: Vec<(String, Vec<u8>)>,
