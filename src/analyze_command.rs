@@ -4,7 +4,7 @@ use std::path::PathBuf;
 
 use shadowlab_analysis::report::{filter_label, technique_label};
 use shadowlab_analysis::{report, study, sweep, temporal};
-use shadowlab_raster::{DepthFormat, image_out};
+use shadowlab_raster::DepthFormat;
 use shadowlab_scene::Scene;
 use shadowlab_shadow::{Bias, Splits};
 
@@ -62,7 +62,15 @@ pub(crate) fn analyze(args: &AnalyzeArgs) -> Result<(), CliError> {
         .max()
         .unwrap_or(0);
     let maps = options.partitions.iter().copied().max().unwrap_or(1) as u64;
-    // Two pictures per technique at the picture resolution, and the exports.
+    // Per technique at the picture resolution, three raw pictures and three annotated ones (the
+    // raw pixels framed, room for a long title, up to 320 rows of title and key; RGBA), and the
+    // exports.
+    let (width, height) = (scene.camera.width, scene.camera.height);
+    let annotated = png_bound(
+        (width + 2 * shadowlab_plot::MARGIN).max(1200),
+        height + 320,
+        4,
+    );
     let export_bound = if args.export {
         let combinations = study::settings(&options).len() as u64;
         exports::bound(&scene, combinations, maps, largest_map)
@@ -70,8 +78,7 @@ pub(crate) fn analyze(args: &AnalyzeArgs) -> Result<(), CliError> {
         0
     };
     let estimate = TEXT_BOUND
-        + 2 * options.techniques.len() as u64
-            * png_bound(scene.camera.width, scene.camera.height, 3)
+        + 3 * options.techniques.len() as u64 * (png_bound(width, height, 3) + annotated)
         + export_bound;
     let out = output_dir(args.out.as_ref(), "analyze", &scene, estimate)?;
     memory::check(
@@ -136,30 +143,7 @@ pub(crate) fn analyze(args: &AnalyzeArgs) -> Result<(), CliError> {
     if let Some(exporter) = &exporter {
         report.json = with_exports(&report.json, exporter.index())?;
     }
-    let mut files = vec![
-        ("report.md".to_string(), report.markdown.into_bytes()),
-        ("results.csv".to_string(), report.csv.into_bytes()),
-        ("results.json".to_string(), report.json.into_bytes()),
-        ("pareto.svg".to_string(), report.pareto_svg.into_bytes()),
-        ("pareto.png".to_string(), report.pareto_png),
-    ];
-    if let Some((svg, png)) = report.view_axis {
-        files.push(("view-axis.svg".to_string(), svg.into_bytes()));
-        files.push(("view-axis.png".to_string(), png));
-    }
-    let (w, h) = (study.width, study.height);
-    let failure = |e: shadowlab_raster::RasterError| CliError::Failure(anyhow::anyhow!("{e}"));
-    for pictures in &study.pictures {
-        let label = technique_label(pictures.setting.technique).replace('/', "-");
-        files.push((
-            format!("images/heatmap-{label}.png"),
-            image_out::rgb_png(&pictures.heatmap, w, h).map_err(failure)?,
-        ));
-        files.push((
-            format!("images/difference-{label}.png"),
-            image_out::rgb_png(&pictures.difference, w, h).map_err(failure)?,
-        ));
-    }
+    let files = report.files();
     for (name, bytes) in &files {
         set.add(name, bytes)?;
     }

@@ -72,9 +72,10 @@ fn analyze_is_identical_on_any_thread_count_but_for_timings() {
                     f["sha256"].as_str().unwrap().to_string(),
                 )
             })
-            .filter(|(name, _)| name.starts_with("images/"))
+            .filter(|(name, _)| name.starts_with("images/") || name.starts_with("pictures/"))
             .collect();
-        assert_eq!(pictures.len(), 6, "{pictures:?}");
+        // Three techniques, each with three raw and three annotated pictures.
+        assert_eq!(pictures.len(), 18, "{pictures:?}");
         sets.push((
             untimed(&fs::read_to_string(out.join("results.csv")).unwrap()),
             pictures,

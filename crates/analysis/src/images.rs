@@ -1,4 +1,6 @@
-//! Pictures of per-pixel measurements: a heat map on a logarithmic scale.
+//! Pictures of per-pixel measurements: a heat map on a logarithmic scale, and the keys that make
+//! the study's pictures explain themselves — the heat map's colour bar and the difference image's
+//! legend, as `shadowlab-plot` draws them ([`footprint_colour_bar`], [`difference_legend`]).
 //!
 //! # The colour map
 //! viridis (Stéfan van der Walt and Nathaniel Smith, 2015; matplotlib's default, released CC0),
@@ -7,7 +9,7 @@
 //! lists them (`#440154` … `#FDE725`), and interpolated linearly in sRGB between them; dark
 //! purple is the low end, yellow the high end, and the lightness rises monotonically.
 //!
-//! # The scale (legend-free, so stated here)
+//! # The scale (stated here and on every annotated heat map's colour bar)
 //! A value `v` sits at `f = (log v − log low)/(log high − log low)` along the map, clamped to
 //! `[0, 1]`: below `low` it is the darkest colour, above `high` (and +∞) the brightest. For
 //! footprints, [`HeatScale::PIXELS_PER_TEXEL`] spans 0.1 to 100 pixels per texel over three
@@ -16,10 +18,14 @@
 //! `2/3`, the control point `#35B779` (green). Pixels without a value (nothing visible, or the
 //! value undefined or NaN) are [`NO_VALUE`].
 
+use shadowlab_plot::{Color, ColourBar, Scale, Swatch};
+
+use crate::classify::{BACKGROUND, CORRECT_LIT, CORRECT_SHADOW, FALSELY_LIT, FALSELY_SHADOWED};
 use crate::error::AnalysisError;
 
-/// viridis at `k/9`, `k = 0, …, 9` (see the module docs for the source).
-const VIRIDIS: [[u8; 3]; 10] = [
+/// viridis at `k/9`, `k = 0, …, 9` (see the module docs for the source): the colour map's control
+/// points, which a colour bar's gradient runs through.
+pub const VIRIDIS: [[u8; 3]; 10] = [
     [0x44, 0x01, 0x54],
     [0x48, 0x28, 0x78],
     [0x3E, 0x4A, 0x89],
@@ -135,5 +141,118 @@ pub fn heatmap(values: &[Option<f64>], width: u32, height: u32, scale: HeatScale
     values
         .iter()
         .map(|v| v.and_then(|v| scale.fraction(v)).map_or(NO_VALUE, colour))
+        .collect()
+}
+
+/// The least and greatest finite value of `values` (`None` if there is none): the range a heat
+/// map of them shows.
+#[must_use]
+pub fn value_range(values: &[Option<f64>]) -> Option<(f64, f64)> {
+    values
+        .iter()
+        .flatten()
+        .filter(|v| v.is_finite())
+        .fold(None, |range, &v| match range {
+            None => Some((v, v)),
+            Some((low, high)) => Some((v.min(low), v.max(high))),
+        })
+}
+
+/// The colour bar of a heat map on `scale`: `label` names the quantity and its unit, `range` the
+/// least and greatest value the picture holds. Its gradient runs through [`VIRIDIS`] linearly in
+/// sRGB, as [`colour`] does, so the bar is the map.
+#[must_use]
+pub fn colour_bar(label: &str, scale: HeatScale, range: Option<(f64, f64)>) -> ColourBar {
+    ColourBar {
+        label: label.to_owned(),
+        scale: Scale::Log,
+        low: scale.low,
+        high: scale.high,
+        stops: VIRIDIS.iter().map(|&[r, g, b]| Color(r, g, b)).collect(),
+        range,
+    }
+}
+
+/// The colour bar of the footprint heat map ([`HeatScale::PIXELS_PER_TEXEL`]).
+#[must_use]
+pub fn footprint_colour_bar(range: Option<(f64, f64)>) -> ColourBar {
+    colour_bar(
+        "texel footprint on screen (pixels per texel)",
+        HeatScale::PIXELS_PER_TEXEL,
+        range,
+    )
+}
+
+/// What the footprint heat map's grey means.
+pub const NO_VALUE_MEANING: &str =
+    "no footprint: nothing visible, or a surface edge-on to the light";
+
+/// The heat map's legend: its one colour off the map, [`NO_VALUE`].
+#[must_use]
+pub fn footprint_legend() -> Vec<Swatch> {
+    let [r, g, b] = NO_VALUE;
+    vec![Swatch {
+        color: Color(r, g, b),
+        label: NO_VALUE_MEANING.to_owned(),
+    }]
+}
+
+/// How many pixels of a difference image ([`crate::classify::difference_image`]) have each of
+/// its colours.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct ClassCounts {
+    /// [`FALSELY_LIT`]: falsely lit by some light.
+    pub falsely_lit: u64,
+    /// [`FALSELY_SHADOWED`]: falsely shadowed by some light, falsely lit by none.
+    pub falsely_shadowed: u64,
+    /// [`CORRECT_LIT`]: correct, lit by at least one light.
+    pub correct_lit: u64,
+    /// [`CORRECT_SHADOW`]: correct, lit by none.
+    pub correct_shadow: u64,
+    /// [`BACKGROUND`]: nothing visible.
+    pub background: u64,
+}
+
+impl ClassCounts {
+    /// Counts the classes of `difference`; a pixel of any other colour counts nowhere.
+    #[must_use]
+    pub fn of(difference: &[[u8; 3]]) -> Self {
+        let mut counts = Self::default();
+        for pixel in difference {
+            match *pixel {
+                FALSELY_LIT => counts.falsely_lit += 1,
+                FALSELY_SHADOWED => counts.falsely_shadowed += 1,
+                CORRECT_LIT => counts.correct_lit += 1,
+                CORRECT_SHADOW => counts.correct_shadow += 1,
+                BACKGROUND => counts.background += 1,
+                _ => {}
+            }
+        }
+        counts
+    }
+
+    /// The classes in the legend's order: colour, what it means, how many pixels.
+    #[must_use]
+    pub fn classes(&self) -> [([u8; 3], &'static str, u64); 5] {
+        [
+            (FALSELY_LIT, "falsely lit (light leak)", self.falsely_lit),
+            (FALSELY_SHADOWED, "falsely shadowed", self.falsely_shadowed),
+            (CORRECT_LIT, "correct, lit", self.correct_lit),
+            (CORRECT_SHADOW, "correct, in shadow", self.correct_shadow),
+            (BACKGROUND, "nothing visible", self.background),
+        ]
+    }
+}
+
+/// The difference image's legend: each class's colour, meaning and pixel count.
+#[must_use]
+pub fn difference_legend(counts: &ClassCounts) -> Vec<Swatch> {
+    counts
+        .classes()
+        .iter()
+        .map(|&([r, g, b], meaning, n)| Swatch {
+            color: Color(r, g, b),
+            label: format!("{meaning}: {n} px"),
+        })
         .collect()
 }

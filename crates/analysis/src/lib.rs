@@ -9,9 +9,10 @@
 //! | [`classify`] | falsely lit and falsely shadowed pixels of a frame against a truth, and their picture | — |
 //! | [`aliasing`] | the texel's footprint on screen per pixel from the Jacobian of screen → shadow map on the visible surface, split into perspective and projection parts | CG06 eqs. 4–6, LiSPSM eq. 1; formulas.md §1, §6 |
 //! | [`export`] | every per-pixel result as NumPy arrays and EXR channels with an index: eye pass, truth, lookups and their classes, footprints, raw map depths | — |
-//! | [`images`] | heat maps of per-pixel values on a logarithmic viridis scale | — |
+//! | [`images`] | heat maps of per-pixel values on a logarithmic viridis scale; the colour bar and the difference image's legend | — |
+//! | [`pictures`] | a study's pictures as files: raw (pixel for pixel) and annotated (title, settings, colour bar or legend) | — |
 //! | [`study`] | one scene, every combination of technique, resolution, partitions and filter, measured against one exact truth in one run | CG06 §5 (their table) |
-//! | [`report`] | a study as `report.md`, `results.csv`, `results.json` and a Pareto plot of time against misclassified pixels | — |
+//! | [`report`] | a study as `report.md`, `report.html` (self-contained, sortable tables, the pictures side by side), `results.csv`, `results.json` and a Pareto plot of time against misclassified pixels | — |
 //! | [`sweep`] | the light swept from parallel to perpendicular to the view: errors and aliasing per angle | formulas.md §9 (near-parallel policies) |
 //! | [`view_axis`] | the perspective error along the view axis, measured on each technique's matrices over the closed form of `shadowlab-params` | LiSPSM eq. 3, GMNPR eq. 2, CAD eq. 12 |
 //! | [`temporal`] | a moving camera: pixels whose shadow flips while the truth does not ("shimmer"), with and without texel snapping | production-variants.md (snapping) |
@@ -43,9 +44,12 @@
 
 pub mod aliasing;
 pub mod classify;
+mod document;
 mod error;
 pub mod export;
+mod html;
 pub mod images;
+pub mod pictures;
 pub mod report;
 pub mod study;
 pub mod sweep;

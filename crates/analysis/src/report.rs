@@ -1,5 +1,7 @@
-//! A study written out: `report.md` (tables in the manner of Chong and Gortler's), `results.csv`,
-//! `results.json` and the Pareto plot of time against misclassified pixels.
+//! A study written out: `report.md` (tables in the manner of Chong and Gortler's), `report.html`
+//! (the same document as a self-contained page, with the pictures side by side),
+//! `results.csv`, `results.json`, the Pareto plot of time against misclassified pixels, and the
+//! pictures ([`crate::pictures`]). [`Report::files`] lists every file with its path.
 //!
 //! Every number but the times is deterministic; the times are wall-clock measurements of the same
 //! run and vary from run to run.
@@ -8,9 +10,10 @@ use std::fmt::Write as _;
 
 use serde_json::{Value, json};
 use shadowlab_plot::{Axis, Figure, LegendPosition, LineStyle, Panel, Series};
-use shadowlab_shadow::{Filter, StepDirection, Technique};
+use shadowlab_shadow::{Bias, Filter, StepDirection, Technique};
 
 use crate::aliasing::AliasingStats;
+use crate::document::{self, Align, Block, Table, code, paragraph, text};
 use crate::error::AnalysisError;
 use crate::study::{Measurement, Outcome, Study};
 
@@ -31,6 +34,34 @@ pub struct Report {
     /// closed form; `None` when no technique of the study has a view-axis curve (the
     /// scene-optimized map and frustum limiting alone), so there is nothing to draw.
     pub view_axis: Option<(String, Vec<u8>)>,
+    /// `report.html`: the same document as one self-contained page (inline style, script and
+    /// plots; the pictures by relative path), with sortable tables and the pictures side by side.
+    pub html: String,
+    /// The pictures, raw and annotated, each with its path ([`crate::pictures::files`]).
+    pub pictures: Vec<(String, Vec<u8>)>,
+}
+
+impl Report {
+    /// Every file of the report, each with its path in the output set (`/`-separated, relative):
+    /// `report.md`, `results.csv`, `results.json`, `pareto.svg`, `pareto.png`, `view-axis.svg`
+    /// and `view-axis.png` (if drawn), `report.html`, then the pictures.
+    #[must_use]
+    pub fn files(self) -> Vec<(String, Vec<u8>)> {
+        let mut files = vec![
+            ("report.md".to_owned(), self.markdown.into_bytes()),
+            ("results.csv".to_owned(), self.csv.into_bytes()),
+            ("results.json".to_owned(), self.json.into_bytes()),
+            ("pareto.svg".to_owned(), self.pareto_svg.into_bytes()),
+            ("pareto.png".to_owned(), self.pareto_png),
+        ];
+        if let Some((svg, png)) = self.view_axis {
+            files.push(("view-axis.svg".to_owned(), svg.into_bytes()));
+            files.push(("view-axis.png".to_owned(), png));
+        }
+        files.push(("report.html".to_owned(), self.html.into_bytes()));
+        files.extend(self.pictures);
+        files
+    }
 }
 
 /// The technique's name in tables: its key, and its parameter after a slash where it is not the
@@ -54,6 +85,19 @@ pub fn filter_label(filter: &Filter) -> String {
     }
 }
 
+/// A bias as the command line writes it (`slope:FACTOR,CONSTANT`, …).
+#[must_use]
+pub fn bias_label(bias: &Bias) -> String {
+    match bias {
+        Bias::None => "none".into(),
+        Bias::Constant { offset } => format!("constant:{offset}"),
+        Bias::SlopeScaled { constant, slope } => format!("slope:{slope},{constant}"),
+        Bias::SecondDepth => "second-depth".into(),
+        Bias::Midpoint => "midpoint".into(),
+        Bias::DualDepth { max_bias } => format!("dual-depth:{max_bias}"),
+    }
+}
+
 fn ms(d: std::time::Duration) -> f64 {
     d.as_secs_f64() * 1e3
 }
@@ -61,7 +105,8 @@ fn ms(d: std::time::Duration) -> f64 {
 /// Writes the report of `study`.
 ///
 /// # Errors
-/// [`AnalysisError::Plot`] if a figure cannot be drawn.
+/// [`AnalysisError::Plot`] if a figure or picture cannot be drawn, [`AnalysisError::Raster`] if a
+/// picture cannot be encoded.
 pub fn report(study: &Study) -> Result<Report, AnalysisError> {
     let figure = pareto(study);
     let pareto_svg = shadowlab_plot::render_svg(&figure)?;
@@ -73,8 +118,17 @@ pub fn report(study: &Study) -> Result<Report, AnalysisError> {
         let png = shadowlab_plot::render_png(&svg)?;
         Some((svg, png))
     };
+    let blocks = document(study);
+    let html = crate::html::page(
+        study,
+        &blocks,
+        &pareto_svg,
+        view_axis.as_ref().map(|v| v.0.as_str()),
+    );
     Ok(Report {
-        markdown: markdown(study),
+        markdown: document::markdown(&blocks),
+        html,
+        pictures: crate::pictures::files(study)?,
         csv: csv(study)?,
         json: serde_json::to_string_pretty(&json(study)).expect("plain data"),
         pareto_svg,
@@ -105,25 +159,38 @@ fn distinct<T: PartialEq + Copy>(values: impl Iterator<Item = T>) -> Vec<T> {
     out
 }
 
-fn markdown(study: &Study) -> String {
-    let mut md = String::new();
+/// A table whose first column is the resolution and whose others are the techniques, all
+/// numbers (right-aligned).
+fn resolution_table(header: &[String], rows: Vec<Vec<String>>) -> Table {
+    Table {
+        header: std::iter::once("resolution".to_string())
+            .chain(header.iter().cloned())
+            .collect(),
+        align: vec![Align::Right; header.len() + 1],
+        rows,
+    }
+}
+
+/// The report as a document: what `report.md` and `report.html` both say.
+fn document(study: &Study) -> Vec<Block> {
+    let mut doc = Vec::new();
     let visible = study.visible.max(1);
     #[expect(clippy::cast_precision_loss, reason = "pixel counts")]
     let percent = |n: u64| 100.0 * n as f64 / visible as f64;
-    writeln!(md, "# Shadow quality and cost: `{}`\n", study.scene).unwrap();
-    writeln!(
-        md,
+    doc.push(Block::Heading(
+        1,
+        vec![text("Shadow quality and cost: "), code(&study.scene)],
+    ));
+    let mut intro = vec![vec![text(format!(
         "{}×{} eye image, {} visible pixels. Misclassified pixels are counted against the exact truth \
          (one ray per visible pixel toward each light), computed in {:.1} ms.",
         study.width,
         study.height,
         study.visible,
         ms(study.truth_time)
-    )
-    .unwrap();
+    ))]];
     if let Some(d) = &study.map_truth {
-        writeln!(
-            md,
+        intro.push(vec![text(format!(
             "A {0}² uniform shadow map, Chong and Gortler's truth, disagrees with it at {1} pixels ({2:.3} %): \
              {3} falsely lit, {4} falsely shadowed.",
             crate::study::MAP_TRUTH_RESOLUTION,
@@ -131,9 +198,9 @@ fn markdown(study: &Study) -> String {
             percent(d.total()),
             d.falsely_lit,
             d.falsely_shadowed
-        )
-        .unwrap();
+        ))]);
     }
+    doc.push(Block::Paragraph(intro));
     let techniques = distinct(study.measurements.iter().map(|m| m.setting.technique));
     let resolutions = distinct(study.measurements.iter().map(|m| m.setting.resolution));
     for (partitions, filter) in groups(study) {
@@ -145,14 +212,14 @@ fn markdown(study: &Study) -> String {
                     && filter_label(&m.setting.filter) == filter
             })
         };
-        writeln!(
-            md,
-            "\n## Misclassified pixels — {partitions} map(s) per light, filter {filter}\n"
-        )
-        .unwrap();
+        doc.push(Block::Heading(
+            2,
+            vec![text(format!(
+                "Misclassified pixels — {partitions} map(s) per light, filter {filter}"
+            ))],
+        ));
         let header: Vec<String> = techniques.iter().map(|t| technique_label(*t)).collect();
-        writeln!(md, "| resolution | {} |", header.join(" | ")).unwrap();
-        writeln!(md, "|---:|{}", "---:|".repeat(header.len())).unwrap();
+        let mut rows = Vec::new();
         let mut excess = Vec::new();
         for r in &resolutions {
             let counts: Vec<Option<u64>> = techniques
@@ -163,25 +230,21 @@ fn markdown(study: &Study) -> String {
                         .map(|o| o.errors.total())
                 })
                 .collect();
-            let cells: Vec<String> = counts
+            let cells = counts
                 .iter()
-                .map(|c| c.map_or("—".into(), |c| format!("{c} ({:.2} %)", percent(c))))
-                .collect();
-            writeln!(md, "| {r} | {} |", cells.join(" | ")).unwrap();
+                .map(|c| c.map_or("—".into(), |c| format!("{c} ({:.2} %)", percent(c))));
+            rows.push(std::iter::once(r.to_string()).chain(cells).collect());
             let best = counts.iter().flatten().min().copied();
             excess.push((r, counts, best));
         }
-        writeln!(
-            md,
-            "\nPercentage more misclassified pixels than the best technique at that resolution:\n"
-        )
-        .unwrap();
-        writeln!(md, "| resolution | {} |", header.join(" | ")).unwrap();
-        writeln!(md, "|---:|{}", "---:|".repeat(header.len())).unwrap();
-        for (r, counts, best) in excess {
-            let cells: Vec<String> = counts
-                .iter()
-                .map(|c| match (c, best) {
+        doc.push(Block::Table(resolution_table(&header, rows)));
+        doc.push(paragraph(vec![text(
+            "Percentage more misclassified pixels than the best technique at that resolution:",
+        )]));
+        let rows = excess
+            .into_iter()
+            .map(|(r, counts, best)| {
+                let cells = counts.iter().map(|c| match (c, best) {
                     (Some(c), Some(b)) if b > 0 => {
                         #[expect(clippy::cast_precision_loss, reason = "pixel counts")]
                         let more = 100.0 * (*c as f64 - b as f64) / b as f64;
@@ -189,33 +252,33 @@ fn markdown(study: &Study) -> String {
                     }
                     (Some(_), _) => "0 %".into(),
                     (None, _) => "—".into(),
-                })
-                .collect();
-            writeln!(md, "| {r} | {} |", cells.join(" | ")).unwrap();
-        }
-        chong_gortler(&mut md, &resolutions, &find);
+                });
+                std::iter::once(r.to_string()).chain(cells).collect()
+            })
+            .collect();
+        doc.push(Block::Table(resolution_table(&header, rows)));
+        chong_gortler(&mut doc, &resolutions, &find);
         // Aliasing and time at every resolution, one table each.
-        let table = |md: &mut String, title: &str, cell: &dyn Fn(&Outcome) -> String| {
-            writeln!(md, "\n### {title}\n").unwrap();
-            writeln!(md, "| resolution | {} |", header.join(" | ")).unwrap();
-            writeln!(md, "|---:|{}", "---:|".repeat(header.len())).unwrap();
-            for r in &resolutions {
-                let cells: Vec<String> = techniques
-                    .iter()
-                    .map(|t| {
+        let table = |doc: &mut Vec<Block>, title: &str, cell: &dyn Fn(&Outcome) -> String| {
+            doc.push(Block::Heading(3, vec![text(title)]));
+            let rows = resolutions
+                .iter()
+                .map(|r| {
+                    let cells = techniques.iter().map(|t| {
                         find(*t, *r)
                             .and_then(|m| m.outcome.as_ref().ok())
                             .map_or("—".into(), cell)
-                    })
-                    .collect();
-                writeln!(md, "| {r} | {} |", cells.join(" | ")).unwrap();
-            }
+                    });
+                    std::iter::once(r.to_string()).chain(cells).collect()
+                })
+                .collect();
+            doc.push(Block::Table(resolution_table(&header, rows)));
         };
-        table(&mut md, "Falsely lit / falsely shadowed pixels", &|o| {
+        table(&mut doc, "Falsely lit / falsely shadowed pixels", &|o| {
             format!("{} / {}", o.errors.falsely_lit, o.errors.falsely_shadowed)
         });
         table(
-            &mut md,
+            &mut doc,
             "Texel footprint on screen (pixels per texel): max / 99th percentile / mean",
             &|o| {
                 let s = &o.footprint[0];
@@ -223,12 +286,12 @@ fn markdown(study: &Study) -> String {
             },
         );
         table(
-            &mut md,
+            &mut doc,
             "Its factors, 99th percentiles: perspective (dp/ds) / projection (cos α / cos β)",
             &|o| format!("{:.2} / {:.2}", o.footprint[1].p99, o.footprint[2].p99),
         );
         table(
-            &mut md,
+            &mut doc,
             "Time per frame, ms: total (planning + shadow pass + lookup)",
             &|o| {
                 format!(
@@ -247,54 +310,72 @@ fn markdown(study: &Study) -> String {
         .filter(|m| m.outcome.is_err())
         .collect();
     if !undefined.is_empty() {
-        writeln!(md, "\n## Not defined for this scene\n").unwrap();
+        doc.push(Block::Heading(2, vec![text("Not defined for this scene")]));
         let mut seen = Vec::new();
+        let mut items = Vec::new();
         for m in undefined {
             let label = technique_label(m.setting.technique);
             if !seen.contains(&label) {
-                writeln!(
-                    md,
-                    "- {label}: {}",
+                items.push(vec![text(format!(
+                    "{label}: {}",
                     m.outcome.as_ref().err().map_or("", String::as_str)
-                )
-                .unwrap();
+                ))]);
                 seen.push(label);
             }
         }
+        doc.push(Block::List(items));
     }
-    view_axis_section(&mut md, study);
-    writeln!(md, "\n## The trade\n").unwrap();
-    writeln!(md, "![Time against misclassified pixels](pareto.png)\n").unwrap();
-    writeln!(
-        md,
+    view_axis_section(&mut doc, study);
+    doc.push(Block::Heading(2, vec![text("The trade")]));
+    doc.push(Block::Figure {
+        alt: "Time against misclassified pixels".into(),
+        src: "pareto.png".into(),
+    });
+    doc.push(paragraph(vec![text(format!(
         "Combinations no other beats in misclassified pixels while being faster by more than the \
          measured spread (the Pareto front). Times are the median of {} run(s) of each \
-         combination's shadows, ± half their range:\n",
+         combination's shadows, ± half their range:",
         study.timing_runs
-    )
-    .unwrap();
-    writeln!(
-        md,
-        "| technique | resolution | maps | filter | misclassified | time (ms) | ± (ms) |"
-    )
-    .unwrap();
-    writeln!(md, "|---|---:|---:|---|---:|---:|---:|").unwrap();
-    for m in pareto_front(study) {
-        let o = m.outcome.as_ref().expect("defined");
-        writeln!(
-            md,
-            "| {} | {} | {} | {} | {} | {:.1} | {:.1} |",
-            technique_label(m.setting.technique),
-            m.setting.resolution,
-            m.setting.partitions,
-            filter_label(&m.setting.filter),
-            o.errors.total(),
-            ms(o.time()),
-            ms(o.time_spread)
-        )
-        .unwrap();
-    }
-    md
+    ))]));
+    let rows = pareto_front(study)
+        .into_iter()
+        .map(|m| {
+            let o = m.outcome.as_ref().expect("defined");
+            vec![
+                technique_label(m.setting.technique),
+                m.setting.resolution.to_string(),
+                m.setting.partitions.to_string(),
+                filter_label(&m.setting.filter),
+                o.errors.total().to_string(),
+                format!("{:.1}", ms(o.time())),
+                format!("{:.1}", ms(o.time_spread)),
+            ]
+        })
+        .collect();
+    doc.push(Block::Table(Table {
+        header: [
+            "technique",
+            "resolution",
+            "maps",
+            "filter",
+            "misclassified",
+            "time (ms)",
+            "± (ms)",
+        ]
+        .map(String::from)
+        .to_vec(),
+        align: vec![
+            Align::Left,
+            Align::Right,
+            Align::Right,
+            Align::Left,
+            Align::Right,
+            Align::Right,
+            Align::Right,
+        ],
+        rows,
+    }));
+    doc
 }
 
 /// CG06's Table 1 reported 33–41 % more misclassified pixels for "normal" shadow maps (uniform
@@ -305,7 +386,7 @@ const CG06_NORMAL_EXCESS: (f64, f64) = (33.0, 41.0);
 /// resolution, and how many more pixels normal misclassifies — with the paper's range beside it.
 /// Written only if the study has both techniques.
 fn chong_gortler<'a>(
-    md: &mut String,
+    doc: &mut Vec<Block>,
     resolutions: &[u32],
     find: &impl Fn(Technique, u32) -> Option<&'a Measurement>,
 ) {
@@ -327,24 +408,36 @@ fn chong_gortler<'a>(
     if rows.is_empty() {
         return;
     }
-    writeln!(
-        md,
-        "\nAgainst Chong and Gortler's Table 1 (normal = `uniform_limited`):\n"
-    )
-    .unwrap();
-    writeln!(
-        md,
-        "| resolution | normal | optimal | normal misclassifies more |"
-    )
-    .unwrap();
-    writeln!(md, "|---:|---:|---:|---:|").unwrap();
+    doc.push(paragraph(vec![
+        text("Against Chong and Gortler's Table 1 (normal = "),
+        code("uniform_limited"),
+        text("):"),
+    ]));
     let mut excess = Vec::new();
+    let mut cells = Vec::new();
     for (r, normal, optimal) in rows {
         #[expect(clippy::cast_precision_loss, reason = "pixel counts")]
         let more = 100.0 * (normal as f64 - optimal as f64) / (optimal.max(1) as f64);
         excess.push(more);
-        writeln!(md, "| {r} | {normal} | {optimal} | {more:.1} % |").unwrap();
+        cells.push(vec![
+            r.to_string(),
+            normal.to_string(),
+            optimal.to_string(),
+            format!("{more:.1} %"),
+        ]);
     }
+    doc.push(Block::Table(Table {
+        header: [
+            "resolution",
+            "normal",
+            "optimal",
+            "normal misclassifies more",
+        ]
+        .map(String::from)
+        .to_vec(),
+        align: vec![Align::Right; 4],
+        rows: cells,
+    }));
     let low = excess.iter().copied().fold(f64::INFINITY, f64::min);
     let high = excess.iter().copied().fold(f64::NEG_INFINITY, f64::max);
     let (paper_low, paper_high) = CG06_NORMAL_EXCESS;
@@ -355,13 +448,11 @@ fn chong_gortler<'a>(
     } else {
         "overlapping the paper's range"
     };
-    writeln!(
-        md,
-        "\nHere normal misclassifies {low:.1} % to {high:.1} % more than optimal; Chong and Gortler \
+    doc.push(paragraph(vec![text(format!(
+        "Here normal misclassifies {low:.1} % to {high:.1} % more than optimal; Chong and Gortler \
          reported {paper_low:.0} % to {paper_high:.0} % on their scenes (their truth: a 3700² uniform \
          map; ours: exact rays) — {verdict}."
-    )
-    .unwrap();
+    ))]));
 }
 
 /// Whether `p` dominates `o`: no more misclassified pixels, and faster by more than the two
@@ -563,63 +654,85 @@ fn pareto(study: &Study) -> Figure {
 
 /// The view-axis section: how far the measurement on the V-fitted map lies from the closed form,
 /// and what fitting to the scene changes, at the near plane, √(nf) and the far plane.
-fn view_axis_section(md: &mut String, study: &Study) {
+fn view_axis_section(doc: &mut Vec<Block>, study: &Study) {
     if study.view_axis.is_empty() {
         return;
     }
-    writeln!(md, "\n## Along the view axis\n").unwrap();
-    writeln!(
-        md,
-        "![The perspective error along the view axis](view-axis.png)\n\n\
-         `dp/ds = (1/z)·dz/ds` along the view axis for the first light (LiSPSM eq. 1's perspective \
-         factor; resolution-independent): the closed form of `shadowlab-params` for the map fitted \
-         to the view frustum (LiSPSM eq. 3, GMNPR eq. 2, CAD eq. 12), measured on the matrices \
-         fitted to it, and measured on the matrices fitted to the scene's focus body, which render.\n"
-    )
-    .unwrap();
+    doc.push(Block::Heading(2, vec![text("Along the view axis")]));
+    doc.push(Block::Figure {
+        alt: "The perspective error along the view axis".into(),
+        src: "view-axis.png".into(),
+    });
+    doc.push(paragraph(vec![
+        code("dp/ds = (1/z)·dz/ds"),
+        text(
+            " along the view axis for the first light (LiSPSM eq. 1's perspective \
+             factor; resolution-independent): the closed form of ",
+        ),
+        code("shadowlab-params"),
+        text(
+            " for the map fitted \
+             to the view frustum (LiSPSM eq. 3, GMNPR eq. 2, CAD eq. 12), measured on the matrices \
+             fitted to it, and measured on the matrices fitted to the scene's focus body, which render.",
+        ),
+    ]));
     if let Some((fitted, model)) = study.view_axis.iter().find_map(|c| c.warp_depths) {
-        writeln!(
-            md,
-            "The closed forms model the frustum's cut by the light–view plane; the map is fitted to \
-             the 3-D frustum, whose corners reach further along the warp axis: d = {fitted:.4} \
-             against the model's {model:.4} ({:+.2} %). The closed form and the measurement differ \
-             by about that much; where the two depths agree (issue 5's proof, \
-             `crates/shadow/tests/shadow/closed_forms.rs`) they agree to 1e-6.\n",
-            100.0 * (fitted / model - 1.0)
-        )
-        .unwrap();
+        doc.push(paragraph(vec![
+            text(format!(
+                "The closed forms model the frustum's cut by the light–view plane; the map is fitted to \
+                 the 3-D frustum, whose corners reach further along the warp axis: d = {fitted:.4} \
+                 against the model's {model:.4} ({:+.2} %). The closed form and the measurement differ \
+                 by about that much; where the two depths agree (issue 5's proof, ",
+                100.0 * (fitted / model - 1.0)
+            )),
+            code("crates/shadow/tests/shadow/closed_forms.rs"),
+            text(") they agree to 1e-6."),
+        ]));
     }
-    writeln!(
-        md,
-        "| technique | closed form vs measured (B = V), largest relative difference | \
-         near: closed / B = V / scene | √(nf) | far |"
-    )
-    .unwrap();
-    writeln!(md, "|---|---:|---:|---:|---:|").unwrap();
-    for curve in &study.view_axis {
-        let at = |k: usize| {
-            let cell = |v: Option<f64>| v.map_or("—".into(), |v| format!("{v:.4}"));
-            format!(
-                "{} / {} / {}",
-                cell(curve.closed_form[k]),
-                cell(curve.fitted_to_view[k]),
-                cell(curve.fitted_to_scene[k])
-            )
-        };
-        let last = curve.depths.len() - 1;
-        writeln!(
-            md,
-            "| {} | {} | {} | {} | {} |",
-            technique_label(curve.technique),
-            curve
-                .closed_form_deviation()
-                .map_or("no closed form".into(), |d| format!("{d:.1e}")),
-            at(0),
-            at(last / 2),
-            at(last)
-        )
-        .unwrap();
-    }
+    let rows = study
+        .view_axis
+        .iter()
+        .map(|curve| {
+            let at = |k: usize| {
+                let cell = |v: Option<f64>| v.map_or("—".into(), |v| format!("{v:.4}"));
+                format!(
+                    "{} / {} / {}",
+                    cell(curve.closed_form[k]),
+                    cell(curve.fitted_to_view[k]),
+                    cell(curve.fitted_to_scene[k])
+                )
+            };
+            let last = curve.depths.len() - 1;
+            vec![
+                technique_label(curve.technique),
+                curve
+                    .closed_form_deviation()
+                    .map_or("no closed form".into(), |d| format!("{d:.1e}")),
+                at(0),
+                at(last / 2),
+                at(last),
+            ]
+        })
+        .collect();
+    doc.push(Block::Table(Table {
+        header: [
+            "technique",
+            "closed form vs measured (B = V), largest relative difference",
+            "near: closed / B = V / scene",
+            "√(nf)",
+            "far",
+        ]
+        .map(String::from)
+        .to_vec(),
+        align: vec![
+            Align::Left,
+            Align::Right,
+            Align::Right,
+            Align::Right,
+            Align::Right,
+        ],
+        rows,
+    }));
 }
 
 /// One panel per technique: the closed form (dashed), the V-fitted measurement and the
@@ -698,7 +811,24 @@ fn view_axis_figure(study: &Study) -> Figure {
 
 #[cfg(test)]
 mod csv_tests {
-    use super::csv_field;
+    use super::{bias_label, csv_field};
+    use shadowlab_shadow::Bias;
+
+    #[test]
+    fn bias_labels_parse_back() {
+        for spec in [
+            "none",
+            "constant:0.001",
+            "slope:2,0.00001",
+            "second-depth",
+            "midpoint",
+            "dual-depth:0.5",
+        ] {
+            let bias = Bias::parse(spec).unwrap();
+            assert_eq!(bias_label(&bias), spec);
+        }
+        assert_eq!(bias_label(&Bias::DEFAULT), "slope:2,0.00001");
+    }
 
     #[test]
     fn names_with_separators_are_quoted() {

@@ -9,13 +9,14 @@ use shadowlab_shadow::optimal::OptimalOptions;
 use shadowlab_shadow::{
     Bias, Filter, FocusPolicy, FrameOptions, LightShadow, Lookup, PlanOptions, ShadowError,
     Shadows, Splits, Technique, Timings, eye_pass, render_shadows, scene_eye, serving,
+    view::shade_eye,
 };
 use shadowlab_trace::Bvh;
 
 use crate::aliasing::{AliasingStats, Footprint, footprints_served, stats};
 use crate::classify::{Misclassification, difference_image, misclassification};
 use crate::error::AnalysisError;
-use crate::images::{HeatScale, heatmap};
+use crate::images::{HeatScale, heatmap, value_range};
 use crate::truth::{Truth, disagreement, exact_truth, map_truth, scene_bvh};
 use crate::view_axis::{AxisCurve, curves};
 
@@ -57,13 +58,19 @@ pub struct StudyOptions {
 /// The timing runs per combination of `analyze` by default: the fewest that have a median.
 pub const DEFAULT_TIMING_RUNS: usize = 3;
 
-/// The pictures of one combination: rows from the bottom, like the eye image.
+/// The pictures of one combination: rows from the bottom, like the eye image, one pixel per eye
+/// pixel.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Pictures {
     /// What they show.
     pub setting: Setting,
+    /// The view shaded with this combination's shadows (`shadowlab_shadow::view::shade_eye`).
+    pub eye: Vec<[u8; 3]>,
     /// The texel footprint per pixel on [`HeatScale::PIXELS_PER_TEXEL`] (first light).
     pub heatmap: Vec<[u8; 3]>,
+    /// The least and greatest footprint in the heat map, pixels per texel (`None`: no pixel has
+    /// one), which its colour bar states.
+    pub footprint_range: Option<(f64, f64)>,
     /// Misclassified pixels ([`difference_image`]).
     pub difference: Vec<[u8; 3]>,
 }
@@ -125,6 +132,10 @@ pub struct Study {
     pub scene: String,
     /// The timing runs of each combination ([`StudyOptions::timing_runs`]).
     pub timing_runs: usize,
+    /// The bias of every lookup ([`StudyOptions::bias`]).
+    pub bias: Bias,
+    /// The body every map is fitted to ([`StudyOptions::focus`]).
+    pub focus: FocusPolicy,
     /// Eye image size.
     pub width: u32,
     /// Eye image height.
@@ -366,7 +377,9 @@ pub fn run_observed<E: From<AnalysisError>>(
                     let (width, height) = (eye.image.width, eye.image.height);
                     pictures.push(Pictures {
                         setting: setting.clone(),
+                        eye: shade_eye(&eye.image, &shadows.lights, &shadows.lit, scene),
                         heatmap: heatmap(&totals, width, height, HeatScale::PIXELS_PER_TEXEL),
+                        footprint_range: value_range(&totals),
                         difference: difference_image(&truth, &shadows.lit, &eye.image),
                     });
                 }
@@ -409,6 +422,8 @@ pub fn run_observed<E: From<AnalysisError>>(
     Ok(Study {
         scene: scene.name.clone(),
         timing_runs: options.timing_runs.max(1),
+        bias: options.bias,
+        focus: options.focus,
         width: scene.camera.width,
         height: scene.camera.height,
         visible: visible as u64,

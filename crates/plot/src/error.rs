@@ -27,6 +27,22 @@ pub enum PlotError {
         /// The row's length.
         found: usize,
     },
+    /// An image whose pixels do not fill its sides, or with a side of zero.
+    ImageSize {
+        /// Its width.
+        width: u32,
+        /// Its height.
+        height: u32,
+        /// The pixels given.
+        pixels: usize,
+    },
+    /// A colour bar that cannot be drawn (beyond its range, which is an [`Self::InvalidAxis`]).
+    ColourBar {
+        /// The bar's label.
+        label: String,
+        /// What is wrong.
+        reason: &'static str,
+    },
     /// The chart library or the SVG renderer failed; this is a bug to report.
     Render(String),
 }
@@ -41,6 +57,15 @@ impl fmt::Display for PlotError {
             Self::RowLength { expected, found } => {
                 write!(f, "table row has {found} values for {expected} columns")
             }
+            Self::ImageSize {
+                width,
+                height,
+                pixels,
+            } => write!(
+                f,
+                "an image of {width} × {height} pixels cannot hold {pixels} pixels"
+            ),
+            Self::ColourBar { label, reason } => write!(f, "colour bar \"{label}\": {reason}"),
             Self::Render(message) => {
                 write!(f, "internal rendering error (please report): {message}")
             }

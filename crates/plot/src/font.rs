@@ -9,7 +9,7 @@ use crate::error::PlotError;
 const DEJAVU_SANS: &[u8] = include_bytes!("../../../data/fonts/DejaVuSans.ttf");
 
 /// The family name inside the font file.
-const FAMILY: &str = "DejaVu Sans";
+pub(crate) const FAMILY: &str = "DejaVu Sans";
 
 /// The family the chart code asks for; it resolves to the embedded font both when the chart is laid
 /// out (plotters measures text with it) and when the SVG is rasterised (usvg maps the generic
@@ -45,4 +45,30 @@ pub(crate) fn database() -> Arc<resvg::usvg::fontdb::Database> {
             Arc::new(db)
         })
         .clone()
+}
+
+/// The advance width of `text` set in the embedded font at `size` (the em size, SVG's
+/// `font-size`), with its kerning pairs: where text ends, for layout. Characters the font lacks
+/// count as its missing-glyph box, as usvg draws them.
+pub(crate) fn text_width(text: &str, size: f64) -> Result<f64, PlotError> {
+    use ab_glyph::Font as _;
+    static FONT: OnceLock<Option<ab_glyph::FontRef<'static>>> = OnceLock::new();
+    let font = FONT
+        .get_or_init(|| ab_glyph::FontRef::try_from_slice(DEJAVU_SANS).ok())
+        .as_ref()
+        .ok_or_else(|| PlotError::Render("the embedded font could not be parsed".into()))?;
+    let units = font
+        .units_per_em()
+        .ok_or_else(|| PlotError::Render("the embedded font has no em size".into()))?;
+    let mut advance = 0.0f32;
+    let mut previous = None;
+    for c in text.chars() {
+        let glyph = font.glyph_id(c);
+        advance += font.h_advance_unscaled(glyph);
+        if let Some(p) = previous {
+            advance += font.kern_unscaled(p, glyph);
+        }
+        previous = Some(glyph);
+    }
+    Ok(f64::from(advance / units) * size)
 }

@@ -90,11 +90,16 @@ pub fn render_svg(figure: &Figure) -> Result<String, PlotError> {
 
 /// The SVG rasterised at one pixel per SVG unit, as PNG bytes.
 pub fn render_png(svg: &str) -> Result<Vec<u8>, PlotError> {
+    rasterise(svg)?.encode_png().map_err(render_error)
+}
+
+/// The SVG rasterised at one pixel per SVG unit, with the embedded font as every family.
+pub(crate) fn rasterise(svg: &str) -> Result<resvg::tiny_skia::Pixmap, PlotError> {
     let mut options = resvg::usvg::Options {
         fontdb: font::database(),
         ..resvg::usvg::Options::default()
     };
-    options.font_family = "DejaVu Sans".to_owned();
+    options.font_family = font::FAMILY.to_owned();
     let tree = resvg::usvg::Tree::from_str(svg, &options).map_err(render_error)?;
     let size = tree.size().to_int_size();
     let mut pixmap = resvg::tiny_skia::Pixmap::new(size.width(), size.height())
@@ -104,10 +109,10 @@ pub fn render_png(svg: &str) -> Result<Vec<u8>, PlotError> {
         resvg::tiny_skia::Transform::identity(),
         &mut pixmap.as_mut(),
     );
-    pixmap.encode_png().map_err(render_error)
+    Ok(pixmap)
 }
 
-fn render_error(error: impl std::fmt::Display) -> PlotError {
+pub(crate) fn render_error(error: impl std::fmt::Display) -> PlotError {
     PlotError::Render(error.to_string())
 }
 
@@ -270,7 +275,7 @@ fn rgb(color: SeriesColor) -> RGBColor {
 
 /// A tick label: plain decimals (at most four places, trailing zeros dropped) between 1e-3 and
 /// 1e5, a short exponent form outside.
-fn format_tick(value: f64) -> String {
+pub(crate) fn format_tick(value: f64) -> String {
     if value == 0.0 {
         return "0".into();
     }

@@ -1,15 +1,19 @@
 //! Pictures of a frame: the shaded eye view, and the light's view of a shadow map with the view
-//! frustum and the focus body outlined, as the papers draw them.
+//! frustum and the focus body outlined, as the papers draw them — raw ([`shade`], [`light_view`]:
+//! one pixel per pixel, nothing drawn on them) and annotated ([`eye_picture`],
+//! [`light_view_picture`]: the same pixels under a title naming scene and technique and a line of
+//! settings, the light view with the legend of its colours; drawn by `shadowlab-plot`).
 
 use glam::{DVec2, DVec3};
 use shadowlab_hull::{ConvexHull2, convex_hull_2d};
-use shadowlab_raster::NO_TRIANGLE;
+use shadowlab_plot::{Color as PlotColor, Image, Picture, PlotError, Swatch, render_picture};
+use shadowlab_raster::{EyeImage, NO_TRIANGLE};
 use shadowlab_scene::Scene;
 use tiny_skia::{Color, LineCap, Paint, PathBuilder, Pixmap, Stroke, Transform};
 
 use crate::input::{Eye, LightSource};
 use crate::map::ShadowMap;
-use crate::render::Frame;
+use crate::render::{Frame, LightShadow};
 
 /// Albedos of the mesh groups, in turn (linear, 0–1): muted, distinguishable, printable.
 const PALETTE: [[f64; 3]; 8] = [
@@ -30,15 +34,32 @@ const AMBIENT: f64 = 0.28;
 const DIRECT: f64 = 0.85;
 /// Samples along each frustum edge (the logarithmic map bends them).
 const EDGE_SAMPLES: u32 = 48;
+/// The light view's outline of the view frustum's edges.
+pub const FRUSTUM_COLOUR: [u8; 3] = [215, 40, 40];
+/// The light view's outline of the focus body B.
+pub const FOCUS_BODY_COLOUR: [u8; 3] = [40, 90, 220];
+/// The light view's grey at half the depth range, for its legend.
+const MID_DEPTH_GREY: [u8; 3] = [175, 175, 175];
 
 /// The eye view shaded with its shadows: per-group albedo × (ambient + Σ direct·cos·lit), the
 /// normal turned toward the eye; 8-bit sRGB, row 0 at the bottom.
 #[must_use]
 pub fn shade(frame: &Frame, scene: &Scene) -> Vec<[u8; 3]> {
-    let image = &frame.eye;
+    shade_eye(&frame.eye, &frame.lights, &frame.lit, scene)
+}
+
+/// [`shade`] for an eye pass and the shadows made for it apart (a study's
+/// [`crate::render_shadows`]): `lights` and `lit` as [`crate::Shadows`] holds them.
+#[must_use]
+pub fn shade_eye(
+    image: &EyeImage,
+    lights: &[LightShadow],
+    lit: &[Vec<f64>],
+    scene: &Scene,
+) -> Vec<[u8; 3]> {
     let eye = scene.camera.pose.eye();
     let groups = scene.mesh.groups();
-    let direct = DIRECT / frame.lights.len().max(1) as f64;
+    let direct = DIRECT / lights.len().max(1) as f64;
     (0..image.triangle.len())
         .map(|pixel| {
             let triangle = image.triangle[pixel];
@@ -50,10 +71,9 @@ pub fn shade(frame: &Frame, scene: &Scene) -> Vec<[u8; 3]> {
             if normal.dot(eye - position) < 0.0 {
                 normal = -normal;
             }
-            let light: f64 = frame
-                .lights
+            let light: f64 = lights
                 .iter()
-                .zip(&frame.lit)
+                .zip(lit)
                 .map(|(shadow, lit)| {
                     let toward = shadow.light.toward_from(position);
                     let cone = match shadow.light {
@@ -112,7 +132,12 @@ pub fn light_view(map: &ShadowMap, eye: &Eye) -> Vec<[u8; 3]> {
         stroke(
             &mut pixmap,
             &[closed],
-            Color::from_rgba8(40, 90, 220, 255),
+            Color::from_rgba8(
+                FOCUS_BODY_COLOUR[0],
+                FOCUS_BODY_COLOUR[1],
+                FOCUS_BODY_COLOUR[2],
+                255,
+            ),
             width * 1.5,
         );
     }
@@ -136,7 +161,7 @@ pub fn light_view(map: &ShadowMap, eye: &Eye) -> Vec<[u8; 3]> {
     stroke(
         &mut pixmap,
         &edges,
-        Color::from_rgba8(215, 40, 40, 255),
+        Color::from_rgba8(FRUSTUM_COLOUR[0], FRUSTUM_COLOUR[1], FRUSTUM_COLOUR[2], 255),
         width,
     );
     let rows: Vec<[u8; 3]> = pixmap
@@ -153,6 +178,74 @@ pub fn light_view(map: &ShadowMap, eye: &Eye) -> Vec<[u8; 3]> {
         .flatten()
         .copied()
         .collect()
+}
+
+/// The technique of a frame's first map (every map of a frame has the same).
+fn technique(lights: &[LightShadow]) -> String {
+    lights.first().and_then(|l| l.maps.first()).map_or_else(
+        || "no light".to_owned(),
+        |(_, map)| map.setup.technique.to_string(),
+    )
+}
+
+fn swatch(colour: [u8; 3], label: &str) -> Swatch {
+    Swatch {
+        color: PlotColor(colour[0], colour[1], colour[2]),
+        label: label.to_owned(),
+    }
+}
+
+/// [`shade`] as an annotated PNG: titled with the scene and the technique, `settings` (the
+/// options the frame was made with, as the caller names them) under the title, and the sky's
+/// colour in the legend.
+///
+/// # Errors
+/// `shadowlab-plot`'s, if the picture cannot be drawn (a bug).
+pub fn eye_picture(frame: &Frame, scene: &Scene, settings: &str) -> Result<Vec<u8>, PlotError> {
+    let pixels = shade(frame, scene);
+    render_picture(&Picture {
+        title: format!(
+            "{} — {}: the view with its shadows",
+            scene.name,
+            technique(&frame.lights)
+        ),
+        subtitle: settings.to_owned(),
+        image: Image::bottom_up(frame.eye.width, frame.eye.height, &pixels)?,
+        colour_bar: None,
+        legend: vec![swatch(to_srgb8(SKY), "nothing seen (sky)")],
+    })
+}
+
+/// [`light_view`] as an annotated PNG: titled with the scene (`scene`, its name) and the map's
+/// technique, `settings` under the title, and the legend of its colours (the frustum, B, the
+/// depth grey).
+///
+/// # Errors
+/// `shadowlab-plot`'s, if the picture cannot be drawn (a bug).
+pub fn light_view_picture(
+    map: &ShadowMap,
+    eye: &Eye,
+    scene: &str,
+    settings: &str,
+) -> Result<Vec<u8>, PlotError> {
+    let pixels = light_view(map, eye);
+    render_picture(&Picture {
+        title: format!(
+            "{scene} — {}: the shadow map as the light sees it",
+            map.setup.technique
+        ),
+        subtitle: settings.to_owned(),
+        image: Image::bottom_up(map.resolution, map.resolution, &pixels)?,
+        colour_bar: None,
+        legend: vec![
+            swatch(FRUSTUM_COLOUR, "the view frustum's edges"),
+            swatch(FOCUS_BODY_COLOUR, "the outline of the focus body B"),
+            swatch(
+                MID_DEPTH_GREY,
+                "stored depth: darker nearer the light, white where nothing is",
+            ),
+        ],
+    })
 }
 
 /// Strokes polylines (of at least two points) onto the pixmap.

@@ -2,7 +2,13 @@
 //! monotone lightness, holes in grey, and the scale's validation.
 
 use shadowlab_analysis::AnalysisError;
-use shadowlab_analysis::images::{HeatScale, NO_VALUE, colour, heatmap};
+use shadowlab_analysis::classify::{
+    BACKGROUND, CORRECT_LIT, CORRECT_SHADOW, FALSELY_LIT, FALSELY_SHADOWED,
+};
+use shadowlab_analysis::images::{
+    ClassCounts, HeatScale, NO_VALUE, VIRIDIS, colour, difference_legend, footprint_colour_bar,
+    heatmap, value_range,
+};
 
 /// Relative luminance of an sRGB colour (ITU-R BT.709 weights on linearised channels).
 fn luminance(c: [u8; 3]) -> f64 {
@@ -81,4 +87,72 @@ fn bad_scales_are_errors() {
             "{low}, {high}"
         );
     }
+}
+
+/// Claim: a heat map's range is its least and greatest finite value; holes, NaN and ∞ are not
+/// values; the colour bar runs through viridis's control points on the footprint scale.
+#[test]
+fn the_range_and_the_colour_bar() {
+    let values = [
+        Some(3.0),
+        None,
+        Some(f64::NAN),
+        Some(f64::INFINITY),
+        Some(0.5),
+        Some(2.0),
+    ];
+    assert_eq!(value_range(&values), Some((0.5, 3.0)));
+    assert_eq!(value_range(&[None, Some(f64::NAN)]), None);
+    let bar = footprint_colour_bar(Some((0.5, 3.0)));
+    assert_eq!(
+        (bar.low, bar.high, bar.range),
+        (0.1, 100.0, Some((0.5, 3.0)))
+    );
+    let stops: Vec<[u8; 3]> = bar.stops.iter().map(|c| [c.0, c.1, c.2]).collect();
+    assert_eq!(stops, VIRIDIS);
+    for (k, stop) in stops.iter().enumerate() {
+        #[expect(clippy::cast_precision_loss, reason = "ten stops")]
+        let at = colour(k as f64 / 9.0);
+        assert_eq!(at, *stop, "the bar's stop {k} is the map's colour there");
+    }
+}
+
+/// Claim: the classes of a difference image are counted by colour, and the legend names each
+/// with its colour and count, errors first.
+#[test]
+fn the_difference_classes_are_counted() {
+    let image = [
+        FALSELY_LIT,
+        FALSELY_LIT,
+        FALSELY_SHADOWED,
+        CORRECT_LIT,
+        CORRECT_SHADOW,
+        CORRECT_SHADOW,
+        BACKGROUND,
+    ];
+    let counts = ClassCounts::of(&image);
+    assert_eq!(
+        counts,
+        ClassCounts {
+            falsely_lit: 2,
+            falsely_shadowed: 1,
+            correct_lit: 1,
+            correct_shadow: 2,
+            background: 1,
+        }
+    );
+    let legend = difference_legend(&counts);
+    let labels: Vec<&str> = legend.iter().map(|s| s.label.as_str()).collect();
+    assert_eq!(
+        labels,
+        [
+            "falsely lit (light leak): 2 px",
+            "falsely shadowed: 1 px",
+            "correct, lit: 1 px",
+            "correct, in shadow: 2 px",
+            "nothing visible: 1 px"
+        ]
+    );
+    let [r, g, b] = FALSELY_LIT;
+    assert_eq!(legend[0].color, shadowlab_plot::Color(r, g, b));
 }

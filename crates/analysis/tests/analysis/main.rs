@@ -5,7 +5,9 @@
 //!   image as documented;
 //! - `aliasing`: the footprint against closed forms (a tilted plane, an independent construction
 //!   per pixel, `measure`'s view-axis error at 90° and at any γ), statistics, thread counts;
-//! - `images`: the heat map's colours and scale;
+//! - `images`: the heat map's colours and scale, the difference image's classes counted;
+//! - `pictures`: the annotated pictures hold the raw ones pixel for pixel, their titles and keys;
+//! - `report_html`: `report.html` in headless Chromium (loads, sorts, switches, no errors);
 //! - `sweep`: the logarithmic map's misclassified pixels continuous across γ = φ and at γ = 0;
 //! - `temporal`: the camera walk, and a frame where the optimizer keeps the initial map;
 //! - `view_axis`: measured on the matrices against the closed form at 90°;
@@ -14,6 +16,8 @@
 mod aliasing;
 mod classify;
 mod images;
+mod pictures;
+mod report_html;
 mod support;
 mod sweep;
 mod temporal;

@@ -9,6 +9,7 @@
 //!   filters only at edges, seeded disks;
 //! - `limits`: γ → 0, γ = φ, γ = 90°, far/near up to 1e9: finite, continuous, tending to uniform;
 //! - `optimal`: the scene-optimized map's objective, gradient, descent and plans (CG06);
+//! - `pictures`: the annotated eye and light views hold the raw ones pixel for pixel;
 //! - `rules`: each warp-parameter choice computes what its source computes, in its units; stated
 //!   λ, n and focus bodies are used as stated;
 //! - `snap`: texel snapping translates the window onto the grid and nothing else;
@@ -20,6 +21,7 @@ mod golden;
 mod limits;
 mod lookups;
 mod optimal;
+mod pictures;
 mod rules;
 mod snap;
 mod support;
