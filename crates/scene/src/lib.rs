@@ -62,6 +62,7 @@
 pub mod benchmark;
 mod bounds;
 mod builtin;
+mod gltf_import;
 mod mesh;
 mod normals;
 mod number;
@@ -75,10 +76,18 @@ pub use bounds::Bounds;
 pub use builtin::{
     BUILTIN_SCENES, BuiltinSceneError, DEFAULT_SCENE, builtin_scene, builtin_scene_text,
 };
+pub use gltf_import::{
+    GltfCamera, GltfError, GltfImport, GltfLight, GltfLightKind, GltfObject, GltfObjectKind,
+    GltfProblem, GltfSkipped, GltfWarning, MAX_GLTF_BYTES, MAX_GLTF_TRIANGLES, is_gltf_path,
+    load_gltf, parse_gltf,
+};
 pub use mesh::{DEFAULT_GROUP_NAME, MAX_COORDINATE, MIN_EXTENT, Mesh, MeshError};
 pub use normals::FALLBACK_NORMAL;
 pub use obj::{ObjElement, ObjError, ObjProblem, load_obj, parse_obj};
 pub use procedural::ShapeError;
 pub use read::{MAX_OBJ_BYTES, MAX_SCENE_FILE_BYTES, ReadError};
 pub use scene::{Camera, Scene, SceneLight, ShadowSettings};
-pub use scene_file::{SceneFileError, SceneFileProblem, load_scene, parse_scene};
+pub use scene_file::{
+    LoadedScene, SceneFileError, SceneFileProblem, load_gltf_scene, load_scene,
+    load_scene_with_warnings, parse_scene,
+};

@@ -141,6 +141,7 @@
 
 mod checks;
 mod error;
+mod gltf_scene;
 mod meshes;
 mod raw;
 mod toml_error;
@@ -150,6 +151,7 @@ use std::path::Path;
 
 use glam::DVec3;
 
+use crate::gltf_import::{GltfWarning, is_gltf_path, load_gltf};
 use crate::read::{MAX_SCENE_FILE_BYTES, read_bounded};
 #[cfg(doc)]
 use crate::scene::SceneLight;
@@ -202,7 +204,7 @@ pub const MIN_ANGLE_DEGREES: f64 = 1e-3;
 /// that a scene's camera always has an eye pass.
 pub const MAX_IMAGE_SIDE: u32 = 16384;
 
-/// Where the `obj` paths of a scene's mesh entries are read from.
+/// Where the `obj` and `gltf` paths of a scene's mesh entries are read from.
 pub(crate) enum ObjFiles<'a> {
     /// From disk, relative to this directory (the scene file's).
     Relative(&'a Path),
@@ -214,12 +216,41 @@ pub(crate) enum ObjFiles<'a> {
     },
 }
 
-/// Reads a scene file; `obj` paths are relative to its directory.
+/// A scene with the warnings of the glTF files it was read from: what they hold that shadowlab
+/// cannot represent and skipped (or replaced). A caller shows the warnings to the user.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LoadedScene {
+    /// The scene.
+    pub scene: Scene,
+    /// The warnings, in the order they were met; empty for a scene without glTF files.
+    pub warnings: Vec<GltfWarning>,
+}
+
+/// Reads a scene: a scene file (TOML; `obj` and `gltf` paths relative to its directory), or a
+/// `.gltf` or `.glb` file as a scene by itself ([`load_gltf_scene`] of its default scene), by
+/// the path's extension ([`crate::is_gltf_path`]).
+///
+/// It refuses what would be read with warnings ([`SceneFileError::Skipped`]), so that no caller
+/// loses a mesh, light or camera without being told; [`load_scene_with_warnings`] reads such
+/// scenes and returns the warnings.
 ///
 /// # Errors
-/// [`SceneFileError::Read`] if the file cannot be read, is not a regular file or is larger than
-/// [`MAX_SCENE_FILE_BYTES`]; [`SceneFileError::NotUtf8`]; otherwise as [`parse_scene`].
+/// As [`load_scene_with_warnings`], and [`SceneFileError::Skipped`] listing the warnings.
 pub fn load_scene(path: &Path) -> Result<Scene, SceneFileError> {
+    strict(load_scene_with_warnings(path)?, path)
+}
+
+/// [`load_scene`], returning the warnings of its glTF files instead of refusing them.
+///
+/// # Errors
+/// For a glTF path, as [`load_gltf_scene`]. For a scene file: [`SceneFileError::Read`] if the
+/// file cannot be read, is not a regular file or is larger than [`MAX_SCENE_FILE_BYTES`];
+/// [`SceneFileError::NotUtf8`]; otherwise as [`parse_scene`], but for
+/// [`SceneFileError::Skipped`].
+pub fn load_scene_with_warnings(path: &Path) -> Result<LoadedScene, SceneFileError> {
+    if is_gltf_path(path) {
+        return load_gltf_scene(path, None);
+    }
     let bytes = read_bounded(
         path,
         MAX_SCENE_FILE_BYTES,
@@ -234,7 +265,48 @@ pub fn load_scene(path: &Path) -> Result<Scene, SceneFileError> {
             .filter(|&&b| b == b'\n')
             .count(),
     })?;
-    parse_scene(text, path)
+    let directory = path.parent().unwrap_or(Path::new(""));
+    parse(text, path, &ObjFiles::Relative(directory))
+}
+
+/// Reads scene `scene` of a `.gltf` or `.glb` file (its default scene for `None`, see
+/// [`crate::load_gltf`]) as a scene by itself:
+/// - **mesh**: the scene's triangles in world space, one group per node and primitive;
+/// - **camera**: the first perspective camera met (nodes depth first, in file order), its `yfov`,
+///   `znear` and pose; its far distance is `zfar`, or for an infinite projection (no `zfar`)
+///   the default of scene files (1.01 × the depth of the farthest corner of the scene's bounds);
+///   a `zfar` beyond [`MAX_DEPTH_RATIO`] × `znear` is brought in to that default, with a
+///   warning, if that suffices. The image is [`DEFAULT_IMAGE`], and its width / height is the
+///   aspect (the file's `aspectRatio`, if it differs, is a warning). Without a perspective
+///   camera: the default camera of scene files (framing the bounds);
+/// - **lights**: the directional and spot lights; a spot's far distance is its `range`, or the
+///   scene files' default, and its near distance the scene files' default for that far distance
+///   (`KHR_lights_punctual` gives none). Without lights: the default sun of scene files;
+/// - **name**: the glTF scene's `name`, else the file's stem; **shadow** settings: none.
+///
+/// # Errors
+/// [`SceneFileError::Gltf`] with the [`crate::GltfError`] of reading the file or of its camera
+/// or lights; [`SceneFileError::Field`] or [`SceneFileError::Hull`] if the default camera or
+/// sun cannot be placed (bounds near the f64 range).
+pub fn load_gltf_scene(path: &Path, scene: Option<usize>) -> Result<LoadedScene, SceneFileError> {
+    let import = load_gltf(path, scene).map_err(|error| SceneFileError::Gltf {
+        path: path.to_owned(),
+        field: None,
+        source: Box::new(error),
+    })?;
+    gltf_scene::scene(import, path)
+}
+
+/// The scene of `loaded` if it has no warnings, else [`SceneFileError::Skipped`].
+pub(crate) fn strict(loaded: LoadedScene, path: &Path) -> Result<Scene, SceneFileError> {
+    if loaded.warnings.is_empty() {
+        Ok(loaded.scene)
+    } else {
+        Err(SceneFileError::Skipped {
+            path: path.to_owned(),
+            warnings: loaded.warnings,
+        })
+    }
 }
 
 /// Reads scene-file text as if it were the file `path`: errors name `path`, the scene's default
@@ -249,22 +321,26 @@ pub fn load_scene(path: &Path) -> Result<Scene, SceneFileError> {
 /// - [`SceneFileError::Obj`], [`SceneFileError::Shape`], [`SceneFileError::Mesh`]: an OBJ file
 ///   that is missing or malformed, a shape with too many triangles or inconsistent parameters, a
 ///   transform that overflows;
-/// - [`SceneFileError::Hull`]: a camera or light that overflows `shadowlab-hull`'s checks.
+/// - [`SceneFileError::Hull`]: a camera or light that overflows `shadowlab-hull`'s checks;
+/// - [`SceneFileError::Gltf`]: a `gltf` mesh entry's file that is missing or malformed;
+/// - [`SceneFileError::Skipped`]: a `gltf` mesh entry's file holds parts that would be skipped
+///   (as [`load_scene`]; [`load_scene_with_warnings`] accepts them).
 pub fn parse_scene(text: &str, path: &Path) -> Result<Scene, SceneFileError> {
     let directory = path.parent().unwrap_or(Path::new(""));
-    parse(text, path, &ObjFiles::Relative(directory))
+    strict(parse(text, path, &ObjFiles::Relative(directory))?, path)
 }
 
-/// [`parse_scene`] with the OBJ files read from `obj_files`.
+/// Scene-file text as a scene, with the OBJ and glTF files read from `obj_files`.
 pub(crate) fn parse(
     text: &str,
     path: &Path,
     obj_files: &ObjFiles<'_>,
-) -> Result<Scene, SceneFileError> {
+) -> Result<LoadedScene, SceneFileError> {
     let raw: RawScene =
         toml::from_str(text).map_err(|error| toml_error::scene_toml_error(path, text, &error))?;
     let checker = Checker::new(path);
-    let mesh = meshes::scene_mesh(checker, &raw.mesh, obj_files)?;
+    let mut warnings = Vec::new();
+    let mesh = meshes::scene_mesh(checker, &raw.mesh, obj_files, &mut warnings)?;
     let bounds = mesh.bounds();
     let camera = view::camera(checker, &raw.camera, &bounds)?;
     let lights = if raw.light.is_empty() {
@@ -280,12 +356,15 @@ pub(crate) fn parse(
         let stem = path.file_stem().unwrap_or_default();
         stem.to_string_lossy().into_owned()
     });
-    Ok(Scene {
-        name,
-        camera,
-        lights,
-        mesh,
-        shadow: shadow_settings(checker, raw.shadow)?,
+    Ok(LoadedScene {
+        scene: Scene {
+            name,
+            camera,
+            lights,
+            mesh,
+            shadow: shadow_settings(checker, raw.shadow)?,
+        },
+        warnings,
     })
 }
 
