@@ -62,6 +62,7 @@
 pub mod benchmark;
 mod bounds;
 mod builtin;
+mod export;
 mod gltf_import;
 mod mesh;
 mod normals;
@@ -76,6 +77,7 @@ pub use bounds::Bounds;
 pub use builtin::{
     BUILTIN_SCENES, BuiltinSceneError, DEFAULT_SCENE, builtin_scene, builtin_scene_text,
 };
+pub use export::{ExportError, export_glb, export_gltf, export_obj};
 pub use gltf_import::{
     GltfCamera, GltfError, GltfImport, GltfLight, GltfLightKind, GltfObject, GltfObjectKind,
     GltfProblem, GltfSkipped, GltfWarning, MAX_GLTF_BYTES, MAX_GLTF_TRIANGLES, is_gltf_path,
