@@ -14,11 +14,15 @@
 //! distance). The scene's `name` is the glTF scene's name.
 //!
 //! **Precision.** glTF stores f32: every position, normal, camera and light value is the f32
-//! nearest the scene's f64 (node rotations are the f32 nearest the f64 quaternion of the pose).
+//! nearest the scene's f64 (node rotations are the f32 nearest the f64 quaternion of the pose;
+//! a normal's coordinates may be an ulp off, so that reading the normal back and rounding it
+//! again gives it back).
 //! Reading the file back ([`crate::load_gltf_scene`]) gives exactly those f32 values as f64
-//! positions, since the nodes' transforms are the identity; a file exported from such a
-//! re-imported scene is the same file, and the scene read from it the same scene, bit for bit
-//! (tested). What glTF does not hold is lost: the image size (only its aspect ratio is written;
+//! positions, since the nodes' transforms are the identity; from such a re-imported scene on, the
+//! mesh is a fixed point: exporting and reading it again gives the same mesh bit for bit
+//! (positions, normals, triangles, groups) and the same projections, while camera and light
+//! directions, re-derived from f32 rotations, agree to f32 precision (tested). What glTF does not
+//! hold is lost: the image size (only its aspect ratio is written;
 //! the reader takes the scene files' default image), a spot light's near distance (the reader
 //! derives it from the bounds) and the `[shadow]` settings.
 //!
@@ -52,6 +56,7 @@ use serde_json::{Value, json};
 use shadowlab_hull::ViewPose;
 
 use crate::mesh::Mesh;
+use crate::normals;
 use crate::scene::{Scene, SceneLight};
 
 /// Why a scene could not be exported.
@@ -197,7 +202,7 @@ fn document(scene: &Scene, embed: Option<()>) -> Result<(Value, Vec<u8>), Export
             .collect();
         let normals: Vec<[f32; 3]> = vertices
             .iter()
-            .map(|&v| to_f32(mesh.normals()[v]))
+            .map(|&v| stored_normal(mesh.normals()[v]))
             .collect();
         let (min, max) = positions.iter().fold(
             ([f32::INFINITY; 3], [f32::NEG_INFINITY; 3]),
@@ -361,6 +366,36 @@ fn local_vertices(vertex_count: usize, triangles: &[[u32; 3]]) -> (Vec<usize>, V
 )]
 fn to_f32(v: DVec3) -> [f32; 3] {
     v.to_array().map(|c| c as f32)
+}
+
+/// The f32 normal written for the unit normal `n`: of its f32 rounding and the f32 values an ulp
+/// either side in each coordinate, the one nearest `n` that reading back — normalising in f64 as
+/// [`crate::load_gltf`] and [`Mesh::with_normals`] do — and rounding again reproduces, so that a
+/// re-exported re-import has the same normals; the f32 rounding itself if none does.
+fn stored_normal(n: DVec3) -> [f32; 3] {
+    let nearest = to_f32(n);
+    let read_back = |q: [f32; 3]| {
+        normals::unit(DVec3::from_array(q.map(f64::from)))
+            .and_then(normals::unit)
+            .map(to_f32)
+    };
+    let around = |c: f32| [c, c.next_down(), c.next_up()];
+    let mut best: Option<([f32; 3], f64)> = None;
+    for x in around(nearest[0]) {
+        for y in around(nearest[1]) {
+            for z in around(nearest[2]) {
+                let q = [x, y, z];
+                if read_back(q) != Some(q) {
+                    continue;
+                }
+                let distance = (DVec3::from_array(q.map(f64::from)) - n).length();
+                if best.is_none_or(|(_, d)| distance < d) {
+                    best = Some((q, distance));
+                }
+            }
+        }
+    }
+    best.map_or(nearest, |(q, _)| q)
 }
 
 /// [`ExportError::OutOfF32Range`] for the first coordinate whose f32 is infinite.
