@@ -30,7 +30,8 @@
 //! `v` and `vn` lines for every vertex in order, then per group a `g` line with the group's name
 //! and its triangles as `f a//a b//b c//c`. Numbers are Rust's shortest round-trip form (`{:?}`),
 //! so [`crate::load_obj`] reads back every position bit for bit. Camera and lights, which OBJ
-//! has no statements for, are in a comment header, also at full precision:
+//! has no statements for, are in a comment header, also at full precision (the header of a scene,
+//! its numbers made up):
 //!
 //! ```text
 //! # shadowlab scene "outdoor"

@@ -81,12 +81,15 @@
 //! | `near`, `far` | along the direction, as the camera's | as the camera's, from the spot's position and direction |
 //!
 //! # `[[mesh]]` (one or more)
-//! Each entry is an OBJ file or a procedural shape: give exactly one of `obj` and `shape`.
+//! Each entry is an OBJ file, a glTF file or a procedural shape: give exactly one of `obj`,
+//! `gltf` and `shape`.
 //! | field | meaning | default |
 //! |---|---|---|
 //! | `obj` | an OBJ file (see [`crate::load_obj`]), relative to the scene file's directory | |
+//! | `gltf` | a `.gltf` or `.glb` file (see [`crate::load_gltf`]), relative to the scene file's directory: the triangles of one of its scenes in the file's world space; its cameras and lights are not read (the scene file gives them) | |
+//! | `gltf_scene` | with `gltf` only: the index of the glTF scene | the file's default scene, else scene 0 |
 //! | `shape` | `"plane"`, `"box"`, `"sphere"`, `"cylinder"`, `"lattice"` or `"chessboard"`, with the parameters below | |
-//! | `name` | the entry's group name in [`Scene::mesh`] | the OBJ file's stem, or the shape's name |
+//! | `name` | the entry's group name in [`Scene::mesh`] | the OBJ or glTF file's stem, or the shape's name |
 //! | `scale` | a number, or `[sx, sy, sz]`; each finite and non-zero (negative mirrors, and the winding is kept outward) | 1 |
 //! | `rotate` | `[a, b, c]` degrees: about the world x axis by a, then y by b, then z by c, each counter-clockwise seen from the positive axis (right-hand rule); R = Rz(c)·Ry(b)·Rx(a), exact at multiples of 90° | `[0, 0, 0]` |
 //! | `translate` | `[x, y, z]` | `[0, 0, 0]` |
@@ -95,8 +98,10 @@
 //!
 //! A point p of the shape or file becomes `translate + R·(scale ∘ p) + k·step`: scale first, then
 //! rotate, then translate, then the copy's step. All of an entry's triangles (every copy, every
-//! OBJ group, a chess board's colours, a lattice's axes) form **one group** named `name`, so group
-//! k of [`Scene::mesh`] is entry k.
+//! OBJ group or glTF node, a chess board's colours, a lattice's axes) form **one group** named
+//! `name`, so group k of [`Scene::mesh`] is entry k. What a glTF file holds that shadowlab
+//! cannot represent (lines, skins, …) is a warning: [`load_scene`] refuses it,
+//! [`load_scene_with_warnings`] returns it.
 //!
 //! Shapes and their parameters ([`crate::procedural`]; all centred on the origin, flat ones in the
 //! plane y = 0 facing +y, round ones with their axis along y; by default each fits about the unit
@@ -133,8 +138,9 @@
 //! [`SceneFileError::Field`] naming the field by its path (`camera.near`, `light[0].direction`,
 //! `mesh[2].size[1]`) and the allowed range, e.g.
 //! `outdoor.toml: camera.near (5) must be below camera.far (1)`; meshes that cannot be built are
-//! [`SceneFileError::Obj`], [`SceneFileError::Shape`] or [`SceneFileError::Mesh`], whose
-//! `source()` is the OBJ loader's, the shape's or the mesh's error. Numbers in messages are
+//! [`SceneFileError::Obj`], [`SceneFileError::Gltf`], [`SceneFileError::Shape`] or
+//! [`SceneFileError::Mesh`], whose `source()` is the OBJ or glTF loader's, the shape's or the
+//! mesh's error. Numbers in messages are
 //! shortest round-trip, in scientific notation when very small or large (`1e-300`). Meshes are
 //! built first (the other defaults need their bounds), then the camera, then the lights. Nothing
 //! panics on any input.
