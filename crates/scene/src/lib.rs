@@ -67,8 +67,8 @@
 pub mod benchmark;
 mod bounds;
 mod builtin;
-mod export;
-mod gltf_import;
+pub mod export;
+pub mod gltf_import;
 mod mesh;
 mod normals;
 mod number;
