@@ -85,6 +85,7 @@ pub fn builtin_scene(name: &str) -> Result<Scene, BuiltinSceneError> {
             files: &OBJ_FILES,
         },
     )
+    .and_then(|loaded| scene_file::strict(loaded, &path))
     .map_err(|error| BuiltinSceneError::File(Box::new(error)))
 }
 

@@ -3,8 +3,11 @@
 //! A [`Mesh`] is a validated triangle mesh in f64: finite positions, unit per-vertex normals,
 //! triangles counter-clockwise seen from the side the normals face, and a group (part) id per
 //! triangle. Meshes come from OBJ files ([`load_obj`], through tobj, with errors that name the file
-//! and line) or from [`procedural`] shapes (plane, box, sphere, cylinder, a lattice of thin bars,
-//! a chess board), and can be moved ([`Mesh::transformed`]) and combined ([`Mesh::merged`]).
+//! and line), from glTF 2.0 files ([`load_gltf`]: one scene's triangles in world space, with its
+//! cameras and lights; [`load_gltf_scene`] makes a [`Scene`] of it) or from [`procedural`] shapes
+//! (plane, box, sphere, cylinder, a lattice of thin bars, a chess board), and can be moved
+//! ([`Mesh::transformed`]) and combined ([`Mesh::merged`]). A [`Scene`] is written for other
+//! renderers by [`export_glb`], [`export_gltf`] (glTF stores f32) and [`export_obj`] (every f64).
 //!
 //! ```
 //! use glam::{DAffine3, DVec3};
@@ -49,7 +52,9 @@
 //!   `source()`: [`MeshError`] (vertex, triangle, group), [`ShapeError`] (parameter),
 //!   [`ReadError`] (a file missing, special or too large: [`MAX_OBJ_BYTES`],
 //!   [`MAX_SCENE_FILE_BYTES`]), [`ObjError`] (file and line), [`SceneFileError`] (file and field,
-//!   its source the OBJ, shape or mesh error behind it) and [`BuiltinSceneError`]. Nothing panics
+//!   its source the OBJ, glTF, shape or mesh error behind it), [`GltfError`] (file and glTF
+//!   object) and [`BuiltinSceneError`]; what a glTF file holds that shadowlab cannot represent is
+//!   a [`GltfWarning`] ([`load_scene_with_warnings`]). Nothing panics
 //!   on bad input except [`Mesh::transformed`] and [`Mesh::merged`], the documented panicking
 //!   forms of [`Mesh::try_transformed`] and
 //!   [`Mesh::try_merged`], and [`SceneLight::light`] on a hand-built zero or non-finite
@@ -62,6 +67,8 @@
 pub mod benchmark;
 mod bounds;
 mod builtin;
+pub mod export;
+pub mod gltf_import;
 mod mesh;
 mod normals;
 mod number;
@@ -75,10 +82,19 @@ pub use bounds::Bounds;
 pub use builtin::{
     BUILTIN_SCENES, BuiltinSceneError, DEFAULT_SCENE, builtin_scene, builtin_scene_text,
 };
+pub use export::{ExportError, export_glb, export_gltf, export_obj};
+pub use gltf_import::{
+    GltfCamera, GltfError, GltfImport, GltfLight, GltfLightKind, GltfObject, GltfObjectKind,
+    GltfProblem, GltfSkipped, GltfWarning, MAX_GLTF_BYTES, MAX_GLTF_TRIANGLES, is_gltf_path,
+    load_gltf, parse_gltf,
+};
 pub use mesh::{DEFAULT_GROUP_NAME, MAX_COORDINATE, MIN_EXTENT, Mesh, MeshError};
 pub use normals::FALLBACK_NORMAL;
 pub use obj::{ObjElement, ObjError, ObjProblem, load_obj, parse_obj};
 pub use procedural::ShapeError;
 pub use read::{MAX_OBJ_BYTES, MAX_SCENE_FILE_BYTES, ReadError};
 pub use scene::{Camera, Scene, SceneLight, ShadowSettings};
-pub use scene_file::{SceneFileError, SceneFileProblem, load_scene, parse_scene};
+pub use scene_file::{
+    LoadedScene, SceneFileError, SceneFileProblem, load_gltf_scene, load_scene,
+    load_scene_with_warnings, parse_scene,
+};

@@ -8,6 +8,7 @@ use shadowlab_hull::HullError;
 
 use super::error::{SceneFileError, SceneFileProblem};
 use super::{MAX_IMAGE_SIDE, MIN_ANGLE_DEGREES};
+use crate::gltf_import::GltfError;
 use crate::mesh::MeshError;
 use crate::normals;
 use crate::number::Shown;
@@ -74,6 +75,15 @@ impl<'a> Checker<'a> {
         SceneFileError::Obj {
             path: self.path.to_owned(),
             field: field.into(),
+            source: Box::new(source),
+        }
+    }
+
+    /// A [`SceneFileError::Gltf`] wrapping the glTF reader's error about `field`.
+    pub(super) fn gltf_error(&self, field: impl Into<String>, source: GltfError) -> SceneFileError {
+        SceneFileError::Gltf {
+            path: self.path.to_owned(),
+            field: Some(field.into()),
             source: Box::new(source),
         }
     }

@@ -8,6 +8,7 @@ use std::path::PathBuf;
 use glam::DVec3;
 use shadowlab_hull::HullError;
 
+use crate::gltf_import::{GltfError, GltfWarning};
 use crate::mesh::MeshError;
 use crate::number::{Shown, ShownVector};
 use crate::obj::ObjError;
@@ -83,6 +84,25 @@ pub enum SceneFileError {
         /// The mesh's error.
         source: MeshError,
     },
+    /// A glTF file (a `gltf` mesh entry's, or the scene's own) that is missing or malformed, or
+    /// whose camera or light cannot be used.
+    Gltf {
+        /// The scene file, or the glTF file read as a scene.
+        path: PathBuf,
+        /// The entry's field, e.g. `mesh[0].gltf`; `None` for a glTF file read as a scene.
+        field: Option<String>,
+        /// The glTF reader's error, naming the glTF file and its object.
+        source: Box<GltfError>,
+    },
+    /// The scene's glTF files hold parts that shadowlab cannot represent and would skip (a point
+    /// light, lines, a skin, …): [`crate::load_scene`] refuses them so that nothing is dropped
+    /// unseen; [`crate::load_scene_with_warnings`] reads the scene and returns them.
+    Skipped {
+        /// The scene file, or the glTF file read as a scene.
+        path: PathBuf,
+        /// What would be skipped.
+        warnings: Vec<GltfWarning>,
+    },
     /// A camera or spot light that `shadowlab-hull` rejected after this crate's checks passed:
     /// only for values that overflow (e.g. positions near ±1e308).
     Hull {
@@ -142,6 +162,27 @@ impl fmt::Display for SceneFileError {
                 field,
                 source,
             } => write!(f, "{}: {field}: {source}", path.display()),
+            Self::Gltf {
+                path,
+                field: Some(field),
+                source,
+            } => write!(f, "{}: {field}: {source}", path.display()),
+            Self::Gltf {
+                field: None,
+                source,
+                ..
+            } => write!(f, "{source}"),
+            Self::Skipped { path, warnings } => {
+                write!(
+                    f,
+                    "{}: holds what shadowlab cannot represent and would skip:",
+                    path.display()
+                )?;
+                for warning in warnings {
+                    write!(f, " {warning};")?;
+                }
+                Ok(())
+            }
         }
     }
 }
@@ -154,7 +195,11 @@ impl std::error::Error for SceneFileError {
             Self::Shape { source, .. } => Some(source),
             Self::Mesh { source, .. } => Some(source),
             Self::Hull { source, .. } => Some(source),
-            Self::NotUtf8 { .. } | Self::Toml { .. } | Self::Field { .. } => None,
+            Self::Gltf { source, .. } => Some(source.as_ref()),
+            Self::NotUtf8 { .. }
+            | Self::Toml { .. }
+            | Self::Field { .. }
+            | Self::Skipped { .. } => None,
         }
     }
 }

@@ -9,6 +9,7 @@ use super::ObjFiles;
 use super::checks::{Checker, field};
 use super::error::{SceneFileError, SceneFileProblem};
 use super::raw::{RawMesh, RawScale, ShapeKind};
+use crate::gltf_import::{GltfError, GltfImport, GltfWarning, load_gltf};
 use crate::mesh::{MIN_EXTENT, Mesh};
 use crate::obj::{ObjError, load_obj, parse_obj};
 use crate::procedural::{self, MAX_TRIANGLES, ShapeError};
@@ -45,6 +46,7 @@ pub(super) fn scene_mesh(
     checker: Checker<'_>,
     entries: &[RawMesh],
     obj_files: &ObjFiles<'_>,
+    warnings: &mut Vec<GltfWarning>,
 ) -> Result<Mesh, SceneFileError> {
     if entries.is_empty() {
         return Err(checker.error(
@@ -57,7 +59,7 @@ pub(super) fn scene_mesh(
     let meshes = entries
         .iter()
         .enumerate()
-        .map(|(index, entry)| mesh_entry(checker, index, entry, obj_files))
+        .map(|(index, entry)| mesh_entry(checker, index, entry, obj_files, warnings))
         .collect::<Result<Vec<_>, _>>()?;
     let mesh = Mesh::try_merged(&meshes).map_err(|error| checker.mesh_error("mesh", error))?;
     let extent = mesh.bounds().size().max_element();
@@ -67,46 +69,74 @@ pub(super) fn scene_mesh(
     Ok(mesh)
 }
 
-/// Entry `index`: its mesh in one group named by the entry, transformed and copied.
+/// Entry `index`: its mesh in one group named by the entry, transformed and copied; the
+/// warnings of a glTF file are added to `warnings`.
 fn mesh_entry(
     checker: Checker<'_>,
     index: usize,
     raw: &RawMesh,
     obj_files: &ObjFiles<'_>,
+    warnings: &mut Vec<GltfWarning>,
 ) -> Result<Mesh, SceneFileError> {
     let prefix = format!("mesh[{index}]");
-    let (mesh, default_name) = match (&raw.obj, raw.shape) {
-        (Some(_), Some(_)) => {
-            return Err(checker.error(
-                field(&prefix, "obj"),
-                SceneFileProblem::Conflict {
-                    other: field(&prefix, "shape"),
+    let sources: Vec<&str> = [
+        ("obj", raw.obj.is_some()),
+        ("shape", raw.shape.is_some()),
+        ("gltf", raw.gltf.is_some()),
+    ]
+    .into_iter()
+    .filter_map(|(name, given)| given.then_some(name))
+    .collect();
+    if let [first, second, ..] = sources[..] {
+        return Err(checker.error(
+            field(&prefix, first),
+            SceneFileProblem::Conflict {
+                other: field(&prefix, second),
+            },
+        ));
+    }
+    if raw.gltf_scene.is_some() && raw.gltf.is_none() {
+        return Err(checker.error(
+            field(&prefix, "gltf_scene"),
+            SceneFileProblem::NotApplicable {
+                to: match raw.shape {
+                    Some(shape) => format!("shape \"{}\"", shape.name()),
+                    None => "an entry without `gltf`".to_owned(),
                 },
-            ));
-        }
-        (None, None) => {
-            return Err(checker.error(
-                prefix,
-                SceneFileProblem::Missing {
-                    needs: "one of `obj` and `shape`",
-                },
-            ));
-        }
-        (Some(obj), None) => {
+            },
+        ));
+    }
+    let (mesh, default_name) = match (&raw.obj, raw.shape, &raw.gltf) {
+        (Some(obj), _, _) => {
             not_applicable(checker, &prefix, raw, &[], "an obj mesh")?;
             let mesh = obj_files
                 .load(obj)
                 .map_err(|error| checker.obj_error(field(&prefix, "obj"), error))?;
-            let stem = Path::new(obj).file_stem().unwrap_or_default();
-            (mesh, stem.to_string_lossy().into_owned())
+            (mesh, stem(obj))
         }
-        (None, Some(shape)) => {
+        (None, Some(shape), _) => {
             let to = format!("shape \"{}\"", shape.name());
             not_applicable(checker, &prefix, raw, shape.parameters(), &to)?;
             (
                 build_shape(checker, &prefix, shape, raw)?,
                 shape.name().to_owned(),
             )
+        }
+        (None, None, Some(gltf)) => {
+            not_applicable(checker, &prefix, raw, &[], "a gltf mesh")?;
+            let import = obj_files
+                .load_gltf(gltf, raw.gltf_scene)
+                .map_err(|error| checker.gltf_error(field(&prefix, "gltf"), error))?;
+            warnings.extend(import.warnings);
+            (import.mesh, stem(gltf))
+        }
+        (None, None, None) => {
+            return Err(checker.error(
+                prefix,
+                SceneFileProblem::Missing {
+                    needs: "one of `obj`, `shape` and `gltf`",
+                },
+            ));
         }
     };
     let name = raw.name.clone().unwrap_or(default_name);
@@ -118,6 +148,12 @@ fn mesh_entry(
         None => mesh,
     };
     copies(checker, &prefix, raw, mesh, &name)
+}
+
+/// The stem of a file named in an entry: its default group name.
+fn stem(file: &str) -> String {
+    let stem = Path::new(file).file_stem().unwrap_or_default();
+    stem.to_string_lossy().into_owned()
 }
 
 /// An error for the first shape parameter the entry gives that is not in `allowed`.
@@ -366,6 +402,21 @@ fn copies(
 }
 
 impl ObjFiles<'_> {
+    /// Scene `scene` of an entry's `gltf` path. Embedded files are text; no built-in scene uses
+    /// a glTF file, so an embedded lookup is always a missing file.
+    fn load_gltf(&self, gltf: &str, scene: Option<usize>) -> Result<GltfImport, GltfError> {
+        match self {
+            Self::Relative(directory) => load_gltf(&directory.join(gltf), scene),
+            Self::Embedded { directory, .. } => Err(GltfError::Read(ReadError::Io {
+                path: directory.join(gltf),
+                source: std::io::Error::new(
+                    std::io::ErrorKind::NotFound,
+                    "no glTF file is embedded in the binary",
+                ),
+            })),
+        }
+    }
+
     /// The mesh of an entry's `obj` path.
     fn load(&self, obj: &str) -> Result<Mesh, ObjError> {
         match self {

@@ -81,12 +81,15 @@
 //! | `near`, `far` | along the direction, as the camera's | as the camera's, from the spot's position and direction |
 //!
 //! # `[[mesh]]` (one or more)
-//! Each entry is an OBJ file or a procedural shape: give exactly one of `obj` and `shape`.
+//! Each entry is an OBJ file, a glTF file or a procedural shape: give exactly one of `obj`,
+//! `gltf` and `shape`.
 //! | field | meaning | default |
 //! |---|---|---|
 //! | `obj` | an OBJ file (see [`crate::load_obj`]), relative to the scene file's directory | |
+//! | `gltf` | a `.gltf` or `.glb` file (see [`crate::load_gltf`]), relative to the scene file's directory: the triangles of one of its scenes in the file's world space; its cameras and lights are not read (the scene file gives them) | |
+//! | `gltf_scene` | with `gltf` only: the index of the glTF scene | the file's default scene, else scene 0 |
 //! | `shape` | `"plane"`, `"box"`, `"sphere"`, `"cylinder"`, `"lattice"` or `"chessboard"`, with the parameters below | |
-//! | `name` | the entry's group name in [`Scene::mesh`] | the OBJ file's stem, or the shape's name |
+//! | `name` | the entry's group name in [`Scene::mesh`] | the OBJ or glTF file's stem, or the shape's name |
 //! | `scale` | a number, or `[sx, sy, sz]`; each finite and non-zero (negative mirrors, and the winding is kept outward) | 1 |
 //! | `rotate` | `[a, b, c]` degrees: about the world x axis by a, then y by b, then z by c, each counter-clockwise seen from the positive axis (right-hand rule); R = Rz(c)·Ry(b)·Rx(a), exact at multiples of 90° | `[0, 0, 0]` |
 //! | `translate` | `[x, y, z]` | `[0, 0, 0]` |
@@ -95,8 +98,10 @@
 //!
 //! A point p of the shape or file becomes `translate + R·(scale ∘ p) + k·step`: scale first, then
 //! rotate, then translate, then the copy's step. All of an entry's triangles (every copy, every
-//! OBJ group, a chess board's colours, a lattice's axes) form **one group** named `name`, so group
-//! k of [`Scene::mesh`] is entry k.
+//! OBJ group or glTF node, a chess board's colours, a lattice's axes) form **one group** named
+//! `name`, so group k of [`Scene::mesh`] is entry k. What a glTF file holds that shadowlab
+//! cannot represent (lines, skins, …) is a warning: [`load_scene`] refuses it,
+//! [`load_scene_with_warnings`] returns it.
 //!
 //! Shapes and their parameters ([`crate::procedural`]; all centred on the origin, flat ones in the
 //! plane y = 0 facing +y, round ones with their axis along y; by default each fits about the unit
@@ -133,14 +138,16 @@
 //! [`SceneFileError::Field`] naming the field by its path (`camera.near`, `light[0].direction`,
 //! `mesh[2].size[1]`) and the allowed range, e.g.
 //! `outdoor.toml: camera.near (5) must be below camera.far (1)`; meshes that cannot be built are
-//! [`SceneFileError::Obj`], [`SceneFileError::Shape`] or [`SceneFileError::Mesh`], whose
-//! `source()` is the OBJ loader's, the shape's or the mesh's error. Numbers in messages are
+//! [`SceneFileError::Obj`], [`SceneFileError::Gltf`], [`SceneFileError::Shape`] or
+//! [`SceneFileError::Mesh`], whose `source()` is the OBJ or glTF loader's, the shape's or the
+//! mesh's error. Numbers in messages are
 //! shortest round-trip, in scientific notation when very small or large (`1e-300`). Meshes are
 //! built first (the other defaults need their bounds), then the camera, then the lights. Nothing
 //! panics on any input.
 
 mod checks;
 mod error;
+mod gltf_scene;
 mod meshes;
 mod raw;
 mod toml_error;
@@ -150,6 +157,7 @@ use std::path::Path;
 
 use glam::DVec3;
 
+use crate::gltf_import::{GltfWarning, is_gltf_path, load_gltf};
 use crate::read::{MAX_SCENE_FILE_BYTES, read_bounded};
 #[cfg(doc)]
 use crate::scene::SceneLight;
@@ -202,7 +210,7 @@ pub const MIN_ANGLE_DEGREES: f64 = 1e-3;
 /// that a scene's camera always has an eye pass.
 pub const MAX_IMAGE_SIDE: u32 = 16384;
 
-/// Where the `obj` paths of a scene's mesh entries are read from.
+/// Where the `obj` and `gltf` paths of a scene's mesh entries are read from.
 pub(crate) enum ObjFiles<'a> {
     /// From disk, relative to this directory (the scene file's).
     Relative(&'a Path),
@@ -214,12 +222,41 @@ pub(crate) enum ObjFiles<'a> {
     },
 }
 
-/// Reads a scene file; `obj` paths are relative to its directory.
+/// A scene with the warnings of the glTF files it was read from: what they hold that shadowlab
+/// cannot represent and skipped (or replaced). A caller shows the warnings to the user.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LoadedScene {
+    /// The scene.
+    pub scene: Scene,
+    /// The warnings, in the order they were met; empty for a scene without glTF files.
+    pub warnings: Vec<GltfWarning>,
+}
+
+/// Reads a scene: a scene file (TOML; `obj` and `gltf` paths relative to its directory), or a
+/// `.gltf` or `.glb` file as a scene by itself ([`load_gltf_scene`] of its default scene), by
+/// the path's extension ([`crate::is_gltf_path`]).
+///
+/// It refuses what would be read with warnings ([`SceneFileError::Skipped`]), so that no caller
+/// loses a mesh, light or camera without being told; [`load_scene_with_warnings`] reads such
+/// scenes and returns the warnings.
 ///
 /// # Errors
-/// [`SceneFileError::Read`] if the file cannot be read, is not a regular file or is larger than
-/// [`MAX_SCENE_FILE_BYTES`]; [`SceneFileError::NotUtf8`]; otherwise as [`parse_scene`].
+/// As [`load_scene_with_warnings`], and [`SceneFileError::Skipped`] listing the warnings.
 pub fn load_scene(path: &Path) -> Result<Scene, SceneFileError> {
+    strict(load_scene_with_warnings(path)?, path)
+}
+
+/// [`load_scene`], returning the warnings of its glTF files instead of refusing them.
+///
+/// # Errors
+/// For a glTF path, as [`load_gltf_scene`]. For a scene file: [`SceneFileError::Read`] if the
+/// file cannot be read, is not a regular file or is larger than [`MAX_SCENE_FILE_BYTES`];
+/// [`SceneFileError::NotUtf8`]; otherwise as [`parse_scene`], but for
+/// [`SceneFileError::Skipped`].
+pub fn load_scene_with_warnings(path: &Path) -> Result<LoadedScene, SceneFileError> {
+    if is_gltf_path(path) {
+        return load_gltf_scene(path, None);
+    }
     let bytes = read_bounded(
         path,
         MAX_SCENE_FILE_BYTES,
@@ -234,7 +271,48 @@ pub fn load_scene(path: &Path) -> Result<Scene, SceneFileError> {
             .filter(|&&b| b == b'\n')
             .count(),
     })?;
-    parse_scene(text, path)
+    let directory = path.parent().unwrap_or(Path::new(""));
+    parse(text, path, &ObjFiles::Relative(directory))
+}
+
+/// Reads scene `scene` of a `.gltf` or `.glb` file (its default scene for `None`, see
+/// [`crate::load_gltf`]) as a scene by itself:
+/// - **mesh**: the scene's triangles in world space, one group per node and primitive;
+/// - **camera**: the first perspective camera met (nodes depth first, in file order), its `yfov`,
+///   `znear` and pose; its far distance is `zfar`, or for an infinite projection (no `zfar`)
+///   the default of scene files (1.01 × the depth of the farthest corner of the scene's bounds);
+///   a `zfar` beyond [`MAX_DEPTH_RATIO`] × `znear` is brought in to that default, with a
+///   warning, if that suffices. The image is [`DEFAULT_IMAGE`], and its width / height is the
+///   aspect (the file's `aspectRatio`, if it differs, is a warning). Without a perspective
+///   camera: the default camera of scene files (framing the bounds);
+/// - **lights**: the directional and spot lights; a spot's far distance is its `range`, or the
+///   scene files' default, and its near distance the scene files' default for that far distance
+///   (`KHR_lights_punctual` gives none). Without lights: the default sun of scene files;
+/// - **name**: the glTF scene's `name`, else the file's stem; **shadow** settings: none.
+///
+/// # Errors
+/// [`SceneFileError::Gltf`] with the [`crate::GltfError`] of reading the file or of its camera
+/// or lights; [`SceneFileError::Field`] or [`SceneFileError::Hull`] if the default camera or
+/// sun cannot be placed (bounds near the f64 range).
+pub fn load_gltf_scene(path: &Path, scene: Option<usize>) -> Result<LoadedScene, SceneFileError> {
+    let import = load_gltf(path, scene).map_err(|error| SceneFileError::Gltf {
+        path: path.to_owned(),
+        field: None,
+        source: Box::new(error),
+    })?;
+    gltf_scene::scene(import, path)
+}
+
+/// The scene of `loaded` if it has no warnings, else [`SceneFileError::Skipped`].
+pub(crate) fn strict(loaded: LoadedScene, path: &Path) -> Result<Scene, SceneFileError> {
+    if loaded.warnings.is_empty() {
+        Ok(loaded.scene)
+    } else {
+        Err(SceneFileError::Skipped {
+            path: path.to_owned(),
+            warnings: loaded.warnings,
+        })
+    }
 }
 
 /// Reads scene-file text as if it were the file `path`: errors name `path`, the scene's default
@@ -249,22 +327,26 @@ pub fn load_scene(path: &Path) -> Result<Scene, SceneFileError> {
 /// - [`SceneFileError::Obj`], [`SceneFileError::Shape`], [`SceneFileError::Mesh`]: an OBJ file
 ///   that is missing or malformed, a shape with too many triangles or inconsistent parameters, a
 ///   transform that overflows;
-/// - [`SceneFileError::Hull`]: a camera or light that overflows `shadowlab-hull`'s checks.
+/// - [`SceneFileError::Hull`]: a camera or light that overflows `shadowlab-hull`'s checks;
+/// - [`SceneFileError::Gltf`]: a `gltf` mesh entry's file that is missing or malformed;
+/// - [`SceneFileError::Skipped`]: a `gltf` mesh entry's file holds parts that would be skipped
+///   (as [`load_scene`]; [`load_scene_with_warnings`] accepts them).
 pub fn parse_scene(text: &str, path: &Path) -> Result<Scene, SceneFileError> {
     let directory = path.parent().unwrap_or(Path::new(""));
-    parse(text, path, &ObjFiles::Relative(directory))
+    strict(parse(text, path, &ObjFiles::Relative(directory))?, path)
 }
 
-/// [`parse_scene`] with the OBJ files read from `obj_files`.
+/// Scene-file text as a scene, with the OBJ and glTF files read from `obj_files`.
 pub(crate) fn parse(
     text: &str,
     path: &Path,
     obj_files: &ObjFiles<'_>,
-) -> Result<Scene, SceneFileError> {
+) -> Result<LoadedScene, SceneFileError> {
     let raw: RawScene =
         toml::from_str(text).map_err(|error| toml_error::scene_toml_error(path, text, &error))?;
     let checker = Checker::new(path);
-    let mesh = meshes::scene_mesh(checker, &raw.mesh, obj_files)?;
+    let mut warnings = Vec::new();
+    let mesh = meshes::scene_mesh(checker, &raw.mesh, obj_files, &mut warnings)?;
     let bounds = mesh.bounds();
     let camera = view::camera(checker, &raw.camera, &bounds)?;
     let lights = if raw.light.is_empty() {
@@ -280,12 +362,15 @@ pub(crate) fn parse(
         let stem = path.file_stem().unwrap_or_default();
         stem.to_string_lossy().into_owned()
     });
-    Ok(Scene {
-        name,
-        camera,
-        lights,
-        mesh,
-        shadow: shadow_settings(checker, raw.shadow)?,
+    Ok(LoadedScene {
+        scene: Scene {
+            name,
+            camera,
+            lights,
+            mesh,
+            shadow: shadow_settings(checker, raw.shadow)?,
+        },
+        warnings,
     })
 }
 

@@ -103,6 +103,8 @@ impl ShapeKind {
 #[serde(deny_unknown_fields)]
 pub(super) struct RawMesh {
     pub(super) obj: Option<String>,
+    pub(super) gltf: Option<String>,
+    pub(super) gltf_scene: Option<usize>,
     pub(super) shape: Option<ShapeKind>,
     pub(super) name: Option<String>,
     pub(super) translate: Option<[f64; 3]>,

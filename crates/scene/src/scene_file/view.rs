@@ -304,29 +304,19 @@ fn depth_range(
     let far_field = field(prefix, "far");
     let given_near = near.map(|n| checker.positive(&near_field, n)).transpose()?;
     let given_far = far.map(|f| checker.positive(&far_field, f)).transpose()?;
-    let depths = corners(bounds).map(|corner| (corner - pose.eye()).dot(pose.forward()));
-    let nearest = depths.iter().copied().fold(f64::INFINITY, f64::min);
-    let farthest = depths.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    let (nearest, farthest) = corner_depths(bounds, pose);
     let far = match given_far {
         Some(far) => far,
-        None => {
-            let far = farthest * (1.0 + DEPTH_MARGIN);
-            if !(far > 0.0 && far.is_finite()) {
-                return Err(checker.error(
-                    far_field,
-                    SceneFileProblem::NoDefault {
-                        reason: "the scene's bounds lie behind it, or are too far away",
-                    },
-                ));
-            }
-            far
-        }
+        None => default_far(farthest).ok_or_else(|| {
+            checker.error(
+                far_field.clone(),
+                SceneFileProblem::NoDefault {
+                    reason: "the scene's bounds lie behind it, or are too far away",
+                },
+            )
+        })?,
     };
-    let near = given_near.unwrap_or_else(|| {
-        let loose = far / MAX_FAR_NEAR_RATIO;
-        let tight = (nearest * (1.0 - DEPTH_MARGIN)).max(loose);
-        if tight < far { tight } else { loose }
-    });
+    let near = given_near.unwrap_or_else(|| default_near(nearest, far));
     if near >= far {
         return Err(checker.error(
             near_field,
@@ -352,6 +342,31 @@ fn depth_range(
         ));
     }
     Ok((near, far))
+}
+
+/// The smallest and largest depth of the corners of the scene's bounds along `pose`'s view
+/// direction (negative behind it).
+pub(super) fn corner_depths(bounds: &Bounds, pose: &ViewPose) -> (f64, f64) {
+    let depths = corners(bounds).map(|corner| (corner - pose.eye()).dot(pose.forward()));
+    let nearest = depths.iter().copied().fold(f64::INFINITY, f64::min);
+    let farthest = depths.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    (nearest, farthest)
+}
+
+/// The default far distance for the farthest corner depth: farthest·(1 + [`DEPTH_MARGIN`]);
+/// `None` if that is not positive and finite (the scene lies behind, or is too far away).
+pub(super) fn default_far(farthest: f64) -> Option<f64> {
+    let far = farthest * (1.0 + DEPTH_MARGIN);
+    (far > 0.0 && far.is_finite()).then_some(far)
+}
+
+/// The default near distance for the nearest corner depth and the far distance:
+/// max(nearest·(1 − [`DEPTH_MARGIN`]), far / [`MAX_FAR_NEAR_RATIO`]), or far /
+/// [`MAX_FAR_NEAR_RATIO`] if that is not below far.
+pub(super) fn default_near(nearest: f64, far: f64) -> f64 {
+    let loose = far / MAX_FAR_NEAR_RATIO;
+    let tight = (nearest * (1.0 - DEPTH_MARGIN)).max(loose);
+    if tight < far { tight } else { loose }
 }
 
 /// The eight corners of a box.

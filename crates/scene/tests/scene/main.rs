@@ -10,10 +10,19 @@
 //! - `data_meshes`: the meshes committed in data/meshes load with their documented counts;
 //! - `scene_files`: scene files load with the documented defaults, transforms, lights and groups;
 //! - `scene_errors`: every class of bad scene file is an error naming the file and the field;
-//! - `builtin_scenes`: the built-in scenes equal data/scenes on disk and are set up as documented.
+//! - `builtin_scenes`: the built-in scenes equal data/scenes on disk and are set up as documented;
+//! - `gltf_samples`: the glTF 2.0 files of data/gltf/assimp (every malformed one of the package is
+//!   an error naming the file and the problem, unsupported parts are warnings);
+//! - `gltf_files`: glTF files written by the tests: transforms, winding, normals, sparse
+//!   accessors, buffers, scenes, limits, cameras and lights, glTF scenes and scene-file entries;
+//! - `export_roundtrip`: exported scenes read back (glTF: the f32 rounding, then a fixed point;
+//!   OBJ: bit for bit).
 
 mod builtin_scenes;
 mod data_meshes;
+mod export_roundtrip;
+mod gltf_files;
+mod gltf_samples;
 mod mesh;
 mod obj_errors;
 mod obj_loading;

@@ -571,7 +571,7 @@ fn obj_or_shape() {
     );
     assert_eq!(
         field_message(&format!("{BOX}[[mesh]]\nname = \"nothing\"\n")),
-        "mesh[1] needs one of `obj` and `shape`"
+        "mesh[1] needs one of `obj`, `shape` and `gltf`"
     );
     assert_eq!(
         field_message("name = \"empty\"\n"),
