@@ -8,7 +8,7 @@ use shadowlab_raster::DepthFormat;
 use shadowlab_scene::Scene;
 use shadowlab_shadow::{Bias, Splits};
 
-use crate::args::{AnalyzeArgs, MemoryArgs, StudyView, SweepArgs, TemporalArgs};
+use crate::args::{AnalyzeArgs, MemoryArgs, SceneArg, StudyView, SweepArgs, TemporalArgs};
 use crate::error::CliError;
 use crate::exports::{self, Exporter};
 use crate::memory::{self, Workload};
@@ -33,7 +33,7 @@ fn output_dir(
 }
 
 pub(crate) fn analyze(args: &AnalyzeArgs) -> Result<(), CliError> {
-    let scene = load_scene_argument(args.scene.as_deref())?;
+    let scene = load_scene_argument(&args.scene)?;
     let techniques = technique_list(&args.techniques, &args.stated)?;
     let options = study::StudyOptions {
         techniques,
@@ -195,7 +195,7 @@ fn with_exports(json: &str, index: serde_json::Value) -> Result<String, CliError
 }
 
 /// The scene of `sweep-angle` and `temporal`, at the eye image size asked for.
-fn study_scene(scene: Option<&str>, view: &StudyView) -> Result<Scene, CliError> {
+fn study_scene(scene: &SceneArg, view: &StudyView) -> Result<Scene, CliError> {
     let mut scene = load_scene_argument(scene)?;
     if let Some((width, height)) = view.eye_size {
         (scene.camera.width, scene.camera.height) = (width, height);
@@ -219,7 +219,7 @@ fn study_memory(scene: &Scene, view: &StudyView, memory: &MemoryArgs) -> Result<
 }
 
 pub(crate) fn sweep_angle(args: &SweepArgs) -> Result<(), CliError> {
-    let scene = study_scene(args.scene.as_deref(), &args.view)?;
+    let scene = study_scene(&args.scene, &args.view)?;
     let techniques = args.techniques.clone();
     let side = if args.behind {
         sweep::Side::Behind
@@ -253,7 +253,7 @@ pub(crate) fn sweep_angle(args: &SweepArgs) -> Result<(), CliError> {
 }
 
 pub(crate) fn temporal(args: &TemporalArgs) -> Result<(), CliError> {
-    let scene = study_scene(args.scene.as_deref(), &args.view)?;
+    let scene = study_scene(&args.scene, &args.view)?;
     let techniques = args.techniques.clone();
     let out = output_dir(args.out.as_ref(), "temporal", &scene, TEXT_BOUND)?;
     study_memory(&scene, &args.view, &args.memory)?;

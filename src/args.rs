@@ -99,6 +99,19 @@ fn depth_format(text: &str) -> Result<DepthFormat, String> {
     DepthFormat::parse(&value_not_flag(text)?)
 }
 
+/// The scene of every command that takes one.
+#[derive(Debug, Args)]
+pub(crate) struct SceneArg {
+    /// A built-in scene (outdoor, dueling-frusta, cad-lattice, chess-spot, bunny), a scene file
+    /// (.toml) or a glTF 2.0 file (.gltf, .glb: its camera and lights, defaults otherwise).
+    /// Default: outdoor.
+    #[arg(value_name = "SCENE")]
+    pub(crate) name: Option<String>,
+    /// The scene of the glTF file to load, by index (default: the file's default scene).
+    #[arg(long, value_name = "N", allow_negative_numbers = true, value_parser = clap::value_parser!(usize))]
+    pub(crate) gltf_scene: Option<usize>,
+}
+
 /// The techniques every study command measures by default.
 const ALL_TECHNIQUES: &str =
     "uniform,uniform_limited,psm,lispsm,lispsm:minimax,logarithmic,optimal";
@@ -106,8 +119,8 @@ const ALL_TECHNIQUES: &str =
 /// Arguments of `shadowlab analyze`.
 #[derive(Debug, Args)]
 pub(crate) struct AnalyzeArgs {
-    /// A built-in scene or a scene file. Default: outdoor.
-    pub(crate) scene: Option<String>,
+    #[command(flatten)]
+    pub(crate) scene: SceneArg,
     /// The techniques, comma-separated, each TECHNIQUE, lispsm:PARAMETER or optimal:refit.
     #[arg(long, value_delimiter = ',', default_value = ALL_TECHNIQUES, allow_hyphen_values = true, value_parser = technique_spec)]
     pub(crate) techniques: Vec<Technique>,
@@ -209,8 +222,8 @@ pub(crate) struct StudyView {
 /// Arguments of `shadowlab sweep-angle`.
 #[derive(Debug, Args)]
 pub(crate) struct SweepArgs {
-    /// A built-in scene or a scene file (its first light is replaced). Default: outdoor.
-    pub(crate) scene: Option<String>,
+    #[command(flatten)]
+    pub(crate) scene: SceneArg,
     /// The techniques (near-parallel policies), comma-separated.
     #[arg(
         long,
@@ -235,8 +248,8 @@ pub(crate) struct SweepArgs {
 /// Arguments of `shadowlab temporal`.
 #[derive(Debug, Args)]
 pub(crate) struct TemporalArgs {
-    /// A built-in scene or a scene file. Default: outdoor.
-    pub(crate) scene: Option<String>,
+    #[command(flatten)]
+    pub(crate) scene: SceneArg,
     /// Number of frames of the walk.
     #[arg(long, default_value_t = 24, allow_negative_numbers = true, value_parser = whole::<2, MAX_FRAMES>)]
     pub(crate) frames: u32,
@@ -260,8 +273,8 @@ pub(crate) struct TemporalArgs {
 /// Arguments of `shadowlab compare`.
 #[derive(Debug, Args)]
 pub(crate) struct CompareArgs {
-    /// A built-in scene or a scene file. Default: outdoor.
-    pub(crate) scene: Option<String>,
+    #[command(flatten)]
+    pub(crate) scene: SceneArg,
     /// The techniques, comma-separated, each `TECHNIQUE`, `lispsm:PARAMETER` or `optimal:refit`.
     #[arg(
         long,
@@ -318,9 +331,8 @@ fn parse_crop(text: &str) -> Result<[u32; 4], String> {
 /// table, then from the defaults shown.
 #[derive(Debug, Args)]
 pub(crate) struct ShadowArgs {
-    /// A built-in scene (outdoor, dueling-frusta, cad-lattice, chess-spot, bunny) or a scene file
-    /// (.toml). Default: outdoor.
-    pub(crate) scene: Option<String>,
+    #[command(flatten)]
+    pub(crate) scene: SceneArg,
     /// The technique: uniform, uniform_limited, psm, lispsm, logarithmic, optimal, or
     /// TECHNIQUE:PARAMETER. Given here, it replaces the scene's technique and parameter. Default:
     /// lispsm.

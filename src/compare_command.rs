@@ -20,7 +20,7 @@ const LABEL_HEIGHT: u32 = 30;
 const GAP: u32 = 6;
 
 pub(crate) fn run(args: &CompareArgs) -> Result<(), CliError> {
-    let scene = load_scene_argument(args.scene.as_deref())?;
+    let scene = load_scene_argument(&args.scene)?;
     let (width, height) = (scene.camera.width, scene.camera.height);
     let [cx, cy, cw, ch] = args.crop.unwrap_or([0, 0, width, height]);
     if cx + cw > width || cy + ch > height {

@@ -7,15 +7,18 @@ use std::path::Path;
 
 use shadowlab_raster::{DepthFormat, MAX_TARGET_SIZE};
 use shadowlab_scene::scene_file::MAX_IMAGE_SIDE;
-use shadowlab_scene::{DEFAULT_SCENE, Scene, ShadowSettings, builtin_scene, load_scene};
+use shadowlab_scene::{
+    DEFAULT_SCENE, Scene, ShadowSettings, builtin_scene, is_gltf_path, load_gltf_scene,
+    load_scene_with_warnings,
+};
 use shadowlab_shadow::optimal::OptimalOptions;
 use shadowlab_shadow::{
     Bias, Filter, FocusPolicy, Lookup, PlanOptions, Splits, Technique, WarpChoice,
 };
 
 use crate::args::{
-    DEFAULT_RESOLUTION, MAX_OPTIMAL_ITERATIONS, MAX_PARTITIONS, OptimizerArgs, ShadowArgs,
-    StatedWarps, border_fraction, parse_size,
+    DEFAULT_RESOLUTION, MAX_OPTIMAL_ITERATIONS, MAX_PARTITIONS, OptimizerArgs, SceneArg,
+    ShadowArgs, StatedWarps, border_fraction, parse_size,
 };
 use crate::error::CliError;
 
@@ -63,10 +66,10 @@ impl SceneTable<'_> {
 /// Loads the scene and resolves the settings: flags are typed by clap, the scene's fields parsed
 /// here, each once.
 pub(crate) fn resolve(args: &ShadowArgs) -> Result<Resolved, CliError> {
-    let scene = load_scene_argument(args.scene.as_deref())?;
+    let scene = load_scene_argument(&args.scene)?;
     let settings = scene.shadow.clone();
     let table = SceneTable {
-        file: scene_label(args.scene.as_deref()),
+        file: scene_label(&args.scene),
         settings: &settings,
     };
     let technique = technique(args, &table)?;
@@ -258,21 +261,44 @@ pub(crate) fn optimizer_flags(args: &OptimizerArgs) -> Result<OptimalOptions, Cl
     optimizer(args, None)
 }
 
-/// The scene named on the command line: a built-in name, or a path to a scene file.
-pub(crate) fn load_scene_argument(name: Option<&str>) -> Result<Scene, CliError> {
-    let name = name.unwrap_or(DEFAULT_SCENE);
+/// The scene named on the command line: a built-in name, or a path to a scene file or a glTF
+/// file (`--gltf-scene` picks the latter's scene). The scene's warnings (what a glTF file holds
+/// that shadowlab cannot represent, and skipped) are printed to standard error before any work.
+pub(crate) fn load_scene_argument(arg: &SceneArg) -> Result<Scene, CliError> {
+    let name = arg.name.as_deref().unwrap_or(DEFAULT_SCENE);
     let path = Path::new(name);
-    if path.exists() || name.ends_with(".toml") {
-        load_scene(path).map_err(|e| CliError::from_input_file(&e))
-    } else {
-        builtin_scene(name).map_err(|e| CliError::Input(e.to_string()))
+    let gltf = is_gltf_path(path);
+    if arg.gltf_scene.is_some() && !gltf {
+        return Err(CliError::Input(format!(
+            "invalid --gltf-scene: it picks a scene of a glTF file (.gltf, .glb), and {} is not one",
+            scene_label(arg)
+        )));
     }
+    if !is_scene_file(name) {
+        return builtin_scene(name).map_err(|e| CliError::Input(e.to_string()));
+    }
+    let loaded = if gltf {
+        load_gltf_scene(path, arg.gltf_scene)
+    } else {
+        load_scene_with_warnings(path)
+    }
+    .map_err(|e| CliError::from_input_file(&e))?;
+    for warning in &loaded.warnings {
+        eprintln!("shadowlab: warning: {warning}");
+    }
+    Ok(loaded.scene)
+}
+
+/// Whether the scene argument names a file rather than a built-in scene.
+fn is_scene_file(name: &str) -> bool {
+    let path = Path::new(name);
+    path.exists() || name.ends_with(".toml") || is_gltf_path(path)
 }
 
 /// How errors name the scene's settings: the file, or the built-in scene.
-fn scene_label(name: Option<&str>) -> String {
-    match name {
-        Some(n) if Path::new(n).exists() || n.ends_with(".toml") => n.to_string(),
+fn scene_label(arg: &SceneArg) -> String {
+    match arg.name.as_deref() {
+        Some(n) if is_scene_file(n) => n.to_string(),
         Some(n) => format!("built-in scene {n}"),
         None => format!("built-in scene {DEFAULT_SCENE}"),
     }
