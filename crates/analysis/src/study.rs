@@ -253,7 +253,11 @@ pub fn measure(scene: &Scene, truth: &Truth, eye: &EyeImage, shadows: &Shadows) 
 }
 
 /// The outcome of shadows whose per-pixel footprints are `per_pixel`.
-fn outcome(truth: &Truth, shadows: &Shadows, per_pixel: &[Option<Footprint>]) -> Outcome {
+pub(crate) fn outcome(
+    truth: &Truth,
+    shadows: &Shadows,
+    per_pixel: &[Option<Footprint>],
+) -> Outcome {
     let part = |f: fn(&Footprint) -> f64| stats(per_pixel.iter().flatten().map(f));
     Outcome {
         errors: misclassification(truth, &shadows.lit),

@@ -5,6 +5,11 @@
 //!   image as documented;
 //! - `aliasing`: the footprint against closed forms (a tilted plane, an independent construction
 //!   per pixel, `measure`'s view-axis error at 90° and at any γ), statistics, thread counts;
+//! - `setup_file`: the set-up format written and read back bit for bit, every convention
+//!   converted, cameras from their matrices, every error naming the file and the field;
+//! - `evaluate`: a written set-up measures what analyzing its technique measures; images
+//!   shadowlab wrote measure what rendering does; a perturbed map as its rule predicts; shimmer as
+//!   `temporal`'s;
 //! - `images`: the heat map's colours and scale;
 //! - `sweep`: the logarithmic map's misclassified pixels continuous across γ = φ and at γ = 0;
 //! - `temporal`: the camera walk, and a frame where the optimizer keeps the initial map;
@@ -13,7 +18,9 @@
 
 mod aliasing;
 mod classify;
+mod evaluate;
 mod images;
+mod setup_file;
 mod support;
 mod sweep;
 mod temporal;
