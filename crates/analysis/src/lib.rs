@@ -15,6 +15,8 @@
 //! | [`report`] | a study as `report.md`, `report.html` (self-contained, sortable tables, the pictures side by side), `results.csv`, `results.json` and a Pareto plot of time against misclassified pixels | — |
 //! | [`sweep`] | the light swept from parallel to perpendicular to the view: errors and aliasing per angle | formulas.md §9 (near-parallel policies) |
 //! | [`view_axis`] | the perspective error along the view axis, measured on each technique's matrices over the closed form of `shadowlab-params` | LiSPSM eq. 3, GMNPR eq. 2, CAD eq. 12 |
+//! | [`setup_file`] | a shadow set-up as an engine dumps it (per frame, light and partition: matrices, depth range, map size, format, bias, filter, depth images), read in any convention and written for every technique that is a matrix per partition | docs/setup-format.md |
+//! | [`evaluate`] | a set-up file's maps against the exact truth, frame by frame, as `analyze` measures a technique and `temporal` counts shimmer | — |
 //! | [`temporal`] | a moving camera: pixels whose shadow flips while the truth does not ("shimmer"), with and without texel snapping | production-variants.md (snapping) |
 //!
 //! ```no_run
@@ -46,11 +48,13 @@ pub mod aliasing;
 pub mod classify;
 mod document;
 mod error;
+pub mod evaluate;
 pub mod export;
 mod html;
 pub mod images;
 pub mod pictures;
 pub mod report;
+pub mod setup_file;
 pub mod study;
 pub mod sweep;
 pub mod temporal;

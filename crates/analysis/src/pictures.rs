@@ -14,7 +14,7 @@ use shadowlab_shadow::Technique;
 
 use crate::error::AnalysisError;
 use crate::images::{ClassCounts, difference_legend, footprint_colour_bar, footprint_legend};
-use crate::report::{bias_label, filter_label, technique_label};
+use crate::report::{filter_label, technique_label};
 use crate::study::{Pictures, Setting, Study};
 
 /// One of the three pictures of a combination.
@@ -80,8 +80,8 @@ pub fn settings(study: &Study, setting: &Setting) -> String {
         setting.resolution,
         setting.partitions,
         filter_label(&setting.filter),
-        bias_label(&study.bias),
-        study.focus.key(),
+        study.bias,
+        study.focus.map_or("none (maps given)", |f| f.key()),
         study.width,
         study.height,
         if lights > 1 {

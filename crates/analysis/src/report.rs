@@ -10,7 +10,7 @@ use std::fmt::Write as _;
 
 use serde_json::{Value, json};
 use shadowlab_plot::{Axis, Figure, LegendPosition, LineStyle, Panel, Series};
-use shadowlab_shadow::{Bias, Filter, StepDirection, Technique};
+use shadowlab_shadow::{Filter, StepDirection, Technique};
 
 use crate::aliasing::AliasingStats;
 use crate::document::{self, Align, Block, Table, code, paragraph, text};
@@ -82,19 +82,6 @@ pub fn filter_label(filter: &Filter) -> String {
         Filter::Pcf { size } => format!("pcf:{size}"),
         Filter::Disk { taps, radius, seed } => format!("disk:{taps},{radius},{seed}"),
         Filter::Vsm { size, min_variance } => format!("vsm:{size},{min_variance}"),
-    }
-}
-
-/// A bias as the command line writes it (`slope:FACTOR,CONSTANT`, …).
-#[must_use]
-pub fn bias_label(bias: &Bias) -> String {
-    match bias {
-        Bias::None => "none".into(),
-        Bias::Constant { offset } => format!("constant:{offset}"),
-        Bias::SlopeScaled { constant, slope } => format!("slope:{slope},{constant}"),
-        Bias::SecondDepth => "second-depth".into(),
-        Bias::Midpoint => "midpoint".into(),
-        Bias::DualDepth { max_bias } => format!("dual-depth:{max_bias}"),
     }
 }
 
@@ -811,24 +798,7 @@ fn view_axis_figure(study: &Study) -> Figure {
 
 #[cfg(test)]
 mod csv_tests {
-    use super::{bias_label, csv_field};
-    use shadowlab_shadow::Bias;
-
-    #[test]
-    fn bias_labels_parse_back() {
-        for spec in [
-            "none",
-            "constant:0.001",
-            "slope:2,0.00001",
-            "second-depth",
-            "midpoint",
-            "dual-depth:0.5",
-        ] {
-            let bias = Bias::parse(spec).unwrap();
-            assert_eq!(bias_label(&bias), spec);
-        }
-        assert_eq!(bias_label(&Bias::DEFAULT), "slope:2,0.00001");
-    }
+    use super::csv_field;
 
     #[test]
     fn names_with_separators_are_quoted() {

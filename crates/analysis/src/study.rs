@@ -75,6 +75,28 @@ pub struct Pictures {
     pub difference: Vec<[u8; 3]>,
 }
 
+impl Pictures {
+    /// The pictures of `setting`'s `shadows` of `scene`, seen in `eye` and judged by `truth`,
+    /// with the footprints `per_pixel`.
+    #[must_use]
+    pub fn of(
+        setting: &Setting,
+        scene: &Scene,
+        (eye, truth): (&EyeImage, &Truth),
+        shadows: &Shadows,
+        per_pixel: &[Option<Footprint>],
+    ) -> Self {
+        let totals: Vec<Option<f64>> = per_pixel.iter().map(|f| f.map(|f| f.total)).collect();
+        Self {
+            setting: setting.clone(),
+            eye: shade_eye(eye, &shadows.lights, &shadows.lit, scene),
+            heatmap: heatmap(&totals, eye.width, eye.height, HeatScale::PIXELS_PER_TEXEL),
+            footprint_range: value_range(&totals),
+            difference: difference_image(truth, &shadows.lit, eye),
+        }
+    }
+}
+
 /// One combination's settings.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Setting {
@@ -134,8 +156,9 @@ pub struct Study {
     pub timing_runs: usize,
     /// The bias of every lookup ([`StudyOptions::bias`]).
     pub bias: Bias,
-    /// The body every map is fitted to ([`StudyOptions::focus`]).
-    pub focus: FocusPolicy,
+    /// The body every map is fitted to ([`StudyOptions::focus`]); `None` for maps given from
+    /// outside (an evaluated set-up: nothing was fitted).
+    pub focus: Option<FocusPolicy>,
     /// Eye image size.
     pub width: u32,
     /// Eye image height.
@@ -274,7 +297,11 @@ pub fn measure(scene: &Scene, truth: &Truth, eye: &EyeImage, shadows: &Shadows) 
 }
 
 /// The outcome of shadows whose per-pixel footprints are `per_pixel`.
-fn outcome(truth: &Truth, shadows: &Shadows, per_pixel: &[Option<Footprint>]) -> Outcome {
+pub(crate) fn outcome(
+    truth: &Truth,
+    shadows: &Shadows,
+    per_pixel: &[Option<Footprint>],
+) -> Outcome {
     let part = |f: fn(&Footprint) -> f64| stats(per_pixel.iter().flatten().map(f));
     Outcome {
         errors: misclassification(truth, &shadows.lit),
@@ -372,16 +399,13 @@ pub fn run_observed<E: From<AnalysisError>>(
                     && options.partitions.first() == Some(&setting.partitions)
                     && options.filters.first() == Some(&setting.filter);
                 if pictured {
-                    let totals: Vec<Option<f64>> =
-                        per_pixel.iter().map(|f| f.map(|f| f.total)).collect();
-                    let (width, height) = (eye.image.width, eye.image.height);
-                    pictures.push(Pictures {
-                        setting: setting.clone(),
-                        eye: shade_eye(&eye.image, &shadows.lights, &shadows.lit, scene),
-                        heatmap: heatmap(&totals, width, height, HeatScale::PIXELS_PER_TEXEL),
-                        footprint_range: value_range(&totals),
-                        difference: difference_image(&truth, &shadows.lit, &eye.image),
-                    });
+                    pictures.push(Pictures::of(
+                        setting,
+                        scene,
+                        (&eye.image, &truth),
+                        &shadows,
+                        &per_pixel,
+                    ));
                 }
                 observe(&Observed {
                     setting,
@@ -423,7 +447,7 @@ pub fn run_observed<E: From<AnalysisError>>(
         scene: scene.name.clone(),
         timing_runs: options.timing_runs.max(1),
         bias: options.bias,
-        focus: options.focus,
+        focus: Some(options.focus),
         width: scene.camera.width,
         height: scene.camera.height,
         visible: visible as u64,

@@ -136,7 +136,7 @@ pub fn temporal(
 }
 
 /// Pixels seen in both frames whose truth is the same in both but whose shadow state flips.
-fn shimmer(
+pub(crate) fn shimmer(
     before: &[Option<bool>],
     after: &[Option<bool>],
     truth_before: &[Option<bool>],

@@ -151,6 +151,6 @@ fn closed_form(technique: Technique, setup: &LightSetup, range: DepthRange, t: f
             ShadowMapping::Logarithmic(map) => Some(map.view_axis_error(setup.gamma.sin(), t)),
             ShadowMapping::Projective { .. } => None,
         },
-        Technique::Psm | Technique::Optimal(_) => None,
+        Technique::Psm | Technique::Optimal(_) | Technique::Given => None,
     }
 }

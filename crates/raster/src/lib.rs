@@ -17,6 +17,8 @@
 //!   depth in one pass), [`EyeTarget`] (depth and triangle id, resolved into perspective-correct
 //!   world positions and normals by [`EyeTarget::resolve`]), and [`Rasterizer::for_each_fragment`]
 //!   for custom per-pixel work.
+//! * **Images**: [`image_out`] writes depth as EXR, 16-bit PNG and NPY (and colour as PNG);
+//!   [`image_in`] reads the same depth files back, size-checked, for maps made elsewhere.
 //! * **Parallel** by 64 × 64 tiles with rayon: triangles are binned to tiles and each tile is drawn
 //!   by one thread in submission order.
 //!
@@ -48,6 +50,7 @@ mod depth;
 mod error;
 mod eye;
 mod fixed;
+pub mod image_in;
 pub mod image_out;
 mod kernel;
 mod pipeline;

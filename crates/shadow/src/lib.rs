@@ -51,8 +51,10 @@ pub use lookup::{Bias, DEFAULT_DISK_SEED, DEFAULT_MIN_VARIANCE, Filter, Lookup};
 pub use map::{MapOptions, ShadowMap};
 pub use plan::{Partition, Splits, plan, plan_partitions, serving};
 pub use render::{
-    FLAT_SCENE_THICKNESS, FLAT_SCENE_ULPS, Frame, FrameOptions, LightShadow, PlanOptions, Shadows,
-    Timings, eye_pass, plan_light, render_frame, render_shadows, scene_box, scene_eye, scene_input,
+    FLAT_SCENE_THICKNESS, FLAT_SCENE_ULPS, Frame, FrameOptions, GivenDepths, LightMaps,
+    LightShadow, MapSource, PartitionMap, PlanOptions, Shadows, Timings, eye_image, eye_pass,
+    plan_frame, plan_light, render_frame, render_shadows, scene_box, scene_eye, scene_input,
+    shadows_of,
 };
 pub use setup::{LightSetup, PsmReport, ShadowMapping, WarpReport};
 pub use snap::snap_to_texels;

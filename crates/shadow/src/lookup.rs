@@ -2,6 +2,7 @@
 //! and the filters (nearest, PCF, a jittered disk, VSM).
 
 use std::f64::consts::TAU;
+use std::fmt;
 
 use glam::{DMat2, DVec2, DVec3};
 use shadowlab_params::bias::DepthBias;
@@ -60,6 +61,20 @@ impl Bias {
             Self::SecondDepth => "second-depth",
             Self::Midpoint => "midpoint",
             Self::DualDepth { .. } => "dual-depth",
+        }
+    }
+}
+
+impl fmt::Display for Bias {
+    /// The spec [`Bias::parse`] reads back (numbers in Rust's shortest round-trip form, so the
+    /// parsed bias is the same bit for bit): `none`, `constant:O`, `slope:F,C`, `second-depth`,
+    /// `midpoint`, `dual-depth:MAX`.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::Constant { offset } => write!(f, "constant:{offset:?}"),
+            Self::SlopeScaled { constant, slope } => write!(f, "slope:{slope:?},{constant:?}"),
+            Self::DualDepth { max_bias } => write!(f, "dual-depth:{max_bias:?}"),
+            Self::None | Self::SecondDepth | Self::Midpoint => f.write_str(self.key()),
         }
     }
 }

@@ -3,7 +3,7 @@
 use glam::DVec3;
 use rayon::prelude::*;
 use shadowlab_raster::{
-    DepthFormat, DepthPairTarget, DepthTarget, RasterOptions, Rasterizer, Triangles,
+    DepthFormat, DepthPairTarget, DepthTarget, RasterError, RasterOptions, Rasterizer, Triangles,
 };
 use shadowlab_trace::{Bvh, Ray};
 
@@ -132,6 +132,44 @@ impl ShadowMap {
             format: options.format,
             nearest,
             second: options.second_depth.then_some(second),
+        })
+    }
+
+    /// A map of `setup` whose depths are given rather than rendered — read back from another
+    /// renderer, say: `nearest` (and `second`, for the biases that read it) are window depths,
+    /// `resolution²` of them, row-major with row 0 at the bottom, each stored as `format` stores
+    /// it (`format.decode(format.encode(z))`, which keeps a depth already in the format as it is).
+    ///
+    /// # Errors
+    /// [`ShadowError::Raster`] with [`RasterError::ImageSize`] if a vector does not hold
+    /// `resolution²` depths.
+    pub fn from_depths(
+        setup: LightSetup,
+        resolution: u32,
+        format: DepthFormat,
+        nearest: Vec<f64>,
+        second: Option<Vec<f64>>,
+    ) -> Result<Self, ShadowError> {
+        let texels = resolution as usize * resolution as usize;
+        let stored = |depths: Vec<f64>| {
+            if depths.len() != texels {
+                return Err(ShadowError::Raster(RasterError::ImageSize {
+                    width: resolution,
+                    height: resolution,
+                    values: depths.len(),
+                }));
+            }
+            Ok(depths
+                .into_iter()
+                .map(|z| format.decode(format.encode(z)))
+                .collect())
+        };
+        Ok(Self {
+            setup,
+            resolution,
+            format,
+            nearest: stored(nearest)?,
+            second: second.map(stored).transpose()?,
         })
     }
 

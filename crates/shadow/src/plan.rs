@@ -21,7 +21,8 @@ use crate::{logarithmic, psm};
 /// [`ShadowError`] naming why: an empty or flat focus body, a technique not defined for the
 /// configuration (GLPR for γ ≤ φ, the logarithmic map's face partitioning, which makes several
 /// maps: [`plan_partitions`]), or invalid geometry. [`Technique::Optimal`] is always [`ShadowError::NotDefined`]
-/// here: it needs the scene's geometry ([`crate::plan_light`], [`crate::optimal::plan`]).
+/// here: it needs the scene's geometry ([`crate::plan_light`], [`crate::optimal::plan`]); so is
+/// [`Technique::Given`], which is read, not planned.
 pub fn plan(input: &PlanInput, technique: Technique) -> Result<LightSetup, ShadowError> {
     match technique {
         Technique::Uniform | Technique::Lispsm(_) => light_space_warp(input, technique),
@@ -35,6 +36,10 @@ pub fn plan(input: &PlanInput, technique: Technique) -> Result<LightSetup, Shado
                      and its shadows), not a plan input alone: plan it with plan_light or \
                      optimal::plan"
                     .into(),
+        }),
+        Technique::Given => Err(ShadowError::NotDefined {
+            technique: "given",
+            reason: "a given set-up is read from its set-up file, not planned".into(),
         }),
     }
 }

@@ -3,7 +3,7 @@
 
 use std::time::{Duration, Instant};
 
-use glam::DVec3;
+use glam::{DMat4, DVec3};
 use rayon::prelude::*;
 use shadowlab_hull::{Aabb, NdcDepth};
 use shadowlab_raster::{
@@ -138,17 +138,31 @@ impl LightSource {
 /// # Errors
 /// The rasterizer's.
 pub fn eye_pass(scene: &Scene) -> Result<(EyeImage, Option<f64>), ShadowError> {
-    let camera = &scene.camera;
-    let mesh = Triangles::new(scene.mesh.positions(), scene.mesh.triangles());
-    let clip_from_world = camera.view_projection(NdcDepth::NegativeOneToOne);
-    let mut target = EyeTarget::new(camera.width, camera.height, DepthFormat::F32)?;
-    Rasterizer::new(RasterOptions::default()).draw_eye(&mut target, mesh, &clip_from_world)?;
-    let image = target.resolve(mesh, scene.mesh.normals(), &clip_from_world)?;
+    let image = eye_image(
+        scene,
+        &scene.camera.view_projection(NdcDepth::NegativeOneToOne),
+    )?;
     let nearest = eye_depths(&image, &scene_eye(scene))
         .iter()
         .flatten()
         .fold(f64::INFINITY, |a, b| a.min(*b));
     Ok((image, nearest.is_finite().then_some(nearest)))
+}
+
+/// The eye pass of `scene`'s mesh through `clip_from_world` (world → GL clip space), into an
+/// image of the size of the scene's camera: depth, triangle, world position and normal per pixel
+/// (row 0 at the bottom). [`eye_pass`] draws it through the scene's camera; a camera given as
+/// matrices (a set-up file's) is drawn through those matrices, so that the same matrices give the
+/// same image.
+///
+/// # Errors
+/// The rasterizer's.
+pub fn eye_image(scene: &Scene, clip_from_world: &DMat4) -> Result<EyeImage, ShadowError> {
+    let camera = &scene.camera;
+    let mesh = Triangles::new(scene.mesh.positions(), scene.mesh.triangles());
+    let mut target = EyeTarget::new(camera.width, camera.height, DepthFormat::F32)?;
+    Rasterizer::new(RasterOptions::default()).draw_eye(&mut target, mesh, clip_from_world)?;
+    Ok(target.resolve(mesh, scene.mesh.normals(), clip_from_world)?)
 }
 
 /// The scene's camera as a technique sees it.
@@ -260,10 +274,39 @@ pub fn render_frame(scene: &Scene, options: &FrameOptions) -> Result<Frame, Shad
     })
 }
 
+/// Plans every light of `scene` as `options` says ([`plan_light`]), with each map's window snapped
+/// to its texel grid when `options.snap_texels` is set ([`snap_to_texels`]): the partitions, per
+/// light in the scene's order, that [`render_shadows`] renders. `nearest_visible` is the eye
+/// pass's nearest visible depth (PSM's near plane).
+///
+/// # Errors
+/// As [`plan_light`].
+pub fn plan_frame(
+    scene: &Scene,
+    options: &FrameOptions,
+    nearest_visible: Option<f64>,
+) -> Result<Vec<Vec<Partition>>, ShadowError> {
+    scene
+        .lights
+        .iter()
+        .map(|light| {
+            let mut partitions = plan_light(scene, light, &options.plan, nearest_visible)?;
+            if options.snap_texels > 0 {
+                for partition in &mut partitions {
+                    partition.setup =
+                        snap_to_texels(&partition.setup, options.resolution, options.snap_texels);
+                }
+            }
+            Ok(partitions)
+        })
+        .collect()
+}
+
 /// The shadows of `scene` as `options` says, for its eye pass `eye` (from [`eye_pass`], with
-/// `nearest_visible` its nearest visible depth): plan, render the maps, look every visible point
-/// up. A study that tries many options on one view makes the eye pass once. `bvh`, the scene's
-/// ray-casting hierarchy, is what the logarithmic map is cast against; without it one is built.
+/// `nearest_visible` its nearest visible depth): plan ([`plan_frame`]), render the maps, look
+/// every visible point up ([`shadows_of`]). A study that tries many options on one view makes the
+/// eye pass once. `bvh`, the scene's ray-casting hierarchy, is what the logarithmic map is cast
+/// against; without it one is built.
 ///
 /// # Errors
 /// As [`render_frame`], and [`ShadowError::Trace`] if the hierarchy cannot be built.
@@ -274,62 +317,160 @@ pub fn render_shadows(
     nearest_visible: Option<f64>,
     bvh: Option<&Bvh>,
 ) -> Result<Shadows, ShadowError> {
-    let mesh = Triangles::new(scene.mesh.positions(), scene.mesh.triangles());
-    let depths = eye_depths(eye, &scene_eye(scene));
-    let mut timings = Timings::default();
-    let built;
-    let bvh = match (options.plan.technique, bvh) {
-        (_, Some(bvh)) => Some(bvh),
-        (Technique::Logarithmic(_), None) => {
-            built = Bvh::new(scene.mesh.positions(), scene.mesh.triangles())?;
-            Some(&built)
-        }
-        _ => None,
-    };
+    let start = Instant::now();
+    let planned = plan_frame(scene, options, nearest_visible)?;
+    let planning = start.elapsed();
     let map_options = MapOptions {
         resolution: options.resolution,
         format: options.format,
         second_depth: options.lookup.bias.needs_second_depth(),
     };
-    let mut lights = Vec::with_capacity(scene.lights.len());
-    for scene_light in &scene.lights {
-        let start = Instant::now();
-        let mut partitions = plan_light(scene, scene_light, &options.plan, nearest_visible)?;
-        if options.snap_texels > 0 {
-            for partition in &mut partitions {
-                partition.setup =
-                    snap_to_texels(&partition.setup, options.resolution, options.snap_texels);
-            }
+    let lights = scene
+        .lights
+        .iter()
+        .zip(planned)
+        .map(|(light, partitions)| LightMaps {
+            light: LightSource::from_scene(light),
+            partitions: partitions
+                .into_iter()
+                .map(|partition| PartitionMap {
+                    partition,
+                    source: MapSource::Render(map_options),
+                    lookup: options.lookup.clone(),
+                })
+                .collect(),
+        })
+        .collect();
+    let mut shadows = shadows_of(scene, eye, lights, bvh)?;
+    shadows.timings.planning = planning;
+    Ok(shadows)
+}
+
+/// Where one partition's map comes from.
+#[derive(Clone, Debug, PartialEq)]
+pub enum MapSource {
+    /// Rendered from the partition's set-up: rasterized, or cast for the logarithmic map.
+    Render(MapOptions),
+    /// Given depths, stored as their format stores them ([`ShadowMap::from_depths`]): a map read
+    /// back from another renderer, looked up as it is.
+    Depths(GivenDepths),
+}
+
+/// A map's depths as given ([`MapSource::Depths`]): window depths in `[0, 1]`, `resolution²` of
+/// them, row-major with row 0 at the bottom.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GivenDepths {
+    /// Side of the square map, in texels.
+    pub resolution: u32,
+    /// How the depths are stored.
+    pub format: DepthFormat,
+    /// Nearest depth per texel.
+    pub nearest: Vec<f64>,
+    /// Second-nearest depth per texel, for the biases that read it.
+    pub second: Option<Vec<f64>>,
+}
+
+/// One partition of a light's shadow with how its map is made and read ([`shadows_of`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct PartitionMap {
+    /// The partition: the eye depths it serves and its set-up.
+    pub partition: Partition,
+    /// Its map: rendered, or given.
+    pub source: MapSource,
+    /// How its map is read (every pixel it serves is looked up with this bias and filter).
+    pub lookup: Lookup,
+}
+
+/// One light's shadow to make ([`shadows_of`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct LightMaps {
+    /// The light.
+    pub light: LightSource,
+    /// Its partitions, nearest first (one if unpartitioned); each pixel is served by one of them
+    /// ([`serving`]).
+    pub partitions: Vec<PartitionMap>,
+}
+
+/// The shadows of `lights` for `scene`'s eye pass `eye`: each partition's map rendered (or its
+/// given depths stored), then every visible point looked up in the map of the partition that
+/// serves it ([`serving`], by its eye depth toward the scene's camera), with that partition's
+/// lookup. Planning takes no time here (`timings.planning` is zero): the partitions come planned.
+/// `bvh` is what logarithmic maps are cast against; without it one is built, if one is needed.
+///
+/// # Errors
+/// The rasterizer's; [`ShadowError::Trace`] if a hierarchy cannot be built or a texel's ray is
+/// invalid; [`ShadowError::Raster`] if given depths do not fill their map.
+pub fn shadows_of(
+    scene: &Scene,
+    eye: &EyeImage,
+    lights: Vec<LightMaps>,
+    bvh: Option<&Bvh>,
+) -> Result<Shadows, ShadowError> {
+    let mesh = Triangles::new(scene.mesh.positions(), scene.mesh.triangles());
+    let depths = eye_depths(eye, &scene_eye(scene));
+    let cast = lights.iter().flat_map(|l| &l.partitions).any(|p| {
+        matches!(
+            (&p.source, &p.partition.setup.mapping),
+            (MapSource::Render(_), ShadowMapping::Logarithmic(_))
+        )
+    });
+    let built;
+    let bvh = match (bvh, cast) {
+        (Some(bvh), _) => Some(bvh),
+        (None, true) => {
+            built = Bvh::new(scene.mesh.positions(), scene.mesh.triangles())?;
+            Some(&built)
         }
-        timings.planning += start.elapsed();
+        (None, false) => None,
+    };
+    let mut timings = Timings::default();
+    let mut shadows = Vec::with_capacity(lights.len());
+    let mut lookups = Vec::with_capacity(lights.len());
+    for light in lights {
         let start = Instant::now();
-        let maps = partitions
-            .into_iter()
-            .map(|partition| {
-                let map = match (&partition.setup.mapping, bvh) {
+        let mut maps = Vec::with_capacity(light.partitions.len());
+        let mut light_lookups = Vec::with_capacity(light.partitions.len());
+        for PartitionMap {
+            partition,
+            source,
+            lookup,
+        } in light.partitions
+        {
+            let map = match source {
+                MapSource::Render(options) => match (&partition.setup.mapping, bvh) {
                     (ShadowMapping::Logarithmic(_), Some(bvh)) => {
-                        ShadowMap::cast(&partition.setup, bvh, map_options)
+                        ShadowMap::cast(&partition.setup, bvh, options)
                     }
-                    _ => ShadowMap::render(&partition.setup, mesh, map_options),
-                }?;
-                Ok((partition, map))
-            })
-            .collect::<Result<Vec<_>, ShadowError>>()?;
+                    _ => ShadowMap::render(&partition.setup, mesh, options),
+                }?,
+                MapSource::Depths(given) => ShadowMap::from_depths(
+                    partition.setup.clone(),
+                    given.resolution,
+                    given.format,
+                    given.nearest,
+                    given.second,
+                )?,
+            };
+            maps.push((partition, map));
+            light_lookups.push(lookup);
+        }
         timings.shadow_pass += start.elapsed();
-        lights.push(LightShadow {
-            light: LightSource::from_scene(scene_light),
+        shadows.push(LightShadow {
+            light: light.light,
             maps,
         });
+        lookups.push(light_lookups);
     }
 
     let start = Instant::now();
-    let lit = lights
+    let lit = shadows
         .iter()
-        .map(|shadow| look_up(eye, &depths, shadow, &options.lookup))
+        .zip(&lookups)
+        .map(|(shadow, lookups)| look_up(eye, &depths, shadow, lookups))
         .collect();
     timings.lookup = start.elapsed();
     Ok(Shadows {
-        lights,
+        lights: shadows,
         lit,
         timings,
     })
@@ -349,12 +490,13 @@ fn eye_depths(image: &EyeImage, eye: &Eye) -> Vec<Option<f64>> {
 /// Rows of pixels looked up per parallel job; any size gives the same result.
 const LOOKUP_ROWS: usize = 8;
 
-/// How lit each pixel's visible point is by one light.
+/// How lit each pixel's visible point is by one light, each read with the lookup of the map that
+/// serves it (`lookups[k]` for `shadow.maps[k]`).
 fn look_up(
     image: &EyeImage,
     depths: &[Option<f64>],
     shadow: &LightShadow,
-    lookup: &Lookup,
+    lookups: &[Lookup],
 ) -> Vec<f64> {
     let width = image.width as usize;
     let mut lit = vec![1.0; image.triangle.len()];
@@ -370,7 +512,7 @@ fn look_up(
                 let position: DVec3 = image.position[pixel];
                 let index = serving(&shadow.maps, |(p, _)| p, position, depth);
                 let map = &shadow.maps[index].1;
-                *value = lookup.lit_fraction(map, position, image.normal[pixel]);
+                *value = lookups[index].lit_fraction(map, position, image.normal[pixel]);
             }
         });
     lit

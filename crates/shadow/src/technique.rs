@@ -31,6 +31,10 @@ pub enum Technique {
     /// [`crate::plan_light`] or [`crate::optimal::plan`], not by [`crate::plan`]. The step's
     /// direction is the paper's or the refitted objective's ([`StepDirection`]).
     Optimal(StepDirection),
+    /// A light set-up given from outside rather than planned: matrices read from a set-up file
+    /// (`shadowlab_analysis::setup_file`), as an engine dumped them. It has no planning of its own,
+    /// so [`crate::plan`] refuses it; it labels the measurements of such a set-up (key `given`).
+    Given,
 }
 
 /// Which way the scene-optimized map's descent turns `p̃_4` (CG06 Algorithm 1 step 4).
@@ -310,7 +314,8 @@ impl Technique {
     /// The logarithmic map with shadowlab's reference rule.
     pub const LOGARITHMIC: Self = Self::Logarithmic(LogarithmicChoice::Eye);
 
-    /// Its key: `uniform`, `uniform_limited`, `psm`, `lispsm`, `logarithmic`, `optimal`.
+    /// Its key: `uniform`, `uniform_limited`, `psm`, `lispsm`, `logarithmic`, `optimal`, or
+    /// `given` for a set-up read from a file (not one of [`Self::KEYS`]: nothing plans it).
     #[must_use]
     pub fn key(self) -> &'static str {
         match self {
@@ -320,6 +325,29 @@ impl Technique {
             Self::Lispsm(_) => "lispsm",
             Self::Logarithmic(_) => "logarithmic",
             Self::Optimal(_) => "optimal",
+            Self::Given => "given",
+        }
+    }
+
+    /// The spec [`Self::parse_spec`] reads back: the key, then `:` and the parameter where it has
+    /// one other than the default (`lispsm:minimax`, `logarithmic:faces`, `optimal:refit`), as
+    /// the command line's technique lists write it.
+    #[must_use]
+    pub fn spec(self) -> String {
+        match self.parameter() {
+            Some(parameter) => format!("{}:{parameter}", self.key()),
+            None => self.key().into(),
+        }
+    }
+
+    /// The technique a spec names: `KEY` or `KEY:PARAMETER`, read by [`Self::parse`].
+    ///
+    /// # Errors
+    /// As [`Self::parse`].
+    pub fn parse_spec(spec: &str) -> Result<Self, String> {
+        match spec.split_once(':') {
+            Some((key, parameter)) => Self::parse(key, Some(parameter)),
+            None => Self::parse(spec, None),
         }
     }
 
@@ -372,18 +400,6 @@ impl Technique {
                 "the parameter {p:?} applies to lispsm, logarithmic and optimal only, not to {key}"
             )),
         }
-    }
-    /// The technique a spec names: `TECHNIQUE` or `TECHNIQUE:PARAMETER` ([`Self::parse`] of the
-    /// parts around the first `:`), as technique lists on the command line and in scene files
-    /// write it.
-    ///
-    /// # Errors
-    /// As [`Self::parse`].
-    pub fn parse_spec(spec: &str) -> Result<Self, String> {
-        let (key, parameter) = spec
-            .split_once(':')
-            .map_or((spec, None), |(key, parameter)| (key, Some(parameter)));
-        Self::parse(key, parameter)
     }
 }
 

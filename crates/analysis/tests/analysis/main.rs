@@ -8,6 +8,11 @@
 //! - `images`: the heat map's colours and scale, the difference image's classes counted;
 //! - `pictures`: the annotated pictures hold the raw ones pixel for pixel, their titles and keys;
 //! - `report_html`: `report.html` in headless Chromium (loads, sorts, switches, no errors);
+//! - `setup_file`: the set-up format written and read back bit for bit, every convention
+//!   converted, cameras from their matrices, every error naming the file and the field;
+//! - `evaluate`: a written set-up measures what analyzing its technique measures; images
+//!   shadowlab wrote measure what rendering does; a perturbed map as its rule predicts; shimmer as
+//!   `temporal`'s;
 //! - `sweep`: the logarithmic map's misclassified pixels continuous across γ = φ and at γ = 0;
 //! - `temporal`: the camera walk, and a frame where the optimizer keeps the initial map;
 //! - `view_axis`: measured on the matrices against the closed form at 90°;
@@ -15,9 +20,11 @@
 
 mod aliasing;
 mod classify;
+mod evaluate;
 mod images;
 mod pictures;
 mod report_html;
+mod setup_file;
 mod support;
 mod sweep;
 mod temporal;

@@ -124,7 +124,7 @@ fn titles_name_scene_technique_and_settings() {
     );
     assert_eq!(
         pictures::settings(&study, setting),
-        "128² shadow map, 1 map(s) per light, filter nearest, bias slope:2,0.00001, focus light; \
+        "128² shadow map, 1 map(s) per light, filter nearest, bias slope:2.0,1e-5, focus light; \
          96×72 eye image"
     );
     let picture = pictures::annotated(&study, &study.pictures[1], PictureKind::Difference).unwrap();

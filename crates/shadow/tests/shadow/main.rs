@@ -4,6 +4,8 @@
 //!   constant, PSM shifted by Δ = LiSPSM with n = zn + Δ);
 //! - `faces`: Lloyd et al.'s face partitioning tiles the view, covers what it serves, reduces to
 //!   the plain map for the overhead light;
+//! - `given`: maps given as depths make the maps they were rendered as; given depths are stored
+//!   in their format; each partition is read with its own lookup;
 //! - `golden`: every built-in scene × technique, hashed; identical on 1, 2 and 8 threads;
 //! - `lookups`: rendered maps looked up: shadows where geometry puts them, biases against acne,
 //!   filters only at edges, seeded disks;
@@ -17,6 +19,7 @@
 
 mod closed_forms;
 mod faces;
+mod given;
 mod golden;
 mod limits;
 mod lookups;

@@ -284,3 +284,61 @@ fn parameter_specs_round_trip() {
     assert!(Technique::parse("lispsm", Some("lambda=x")).is_err());
     assert!(Technique::parse("psm", Some("lambda=1")).is_err());
 }
+
+/// Claim: a technique's spec (as the command line and set-up files write it) and a bias's
+/// `Display` read back as the same value, bit for bit; the given set-up has a key but no spec
+/// that plans it.
+#[test]
+fn technique_and_bias_specs_round_trip() {
+    let mut techniques = vec![
+        Technique::Uniform,
+        Technique::UniformLimited,
+        Technique::Psm,
+        Technique::LOGARITHMIC,
+        Technique::Logarithmic(LogarithmicChoice::Faces),
+        Technique::Optimal(shadowlab_shadow::StepDirection::Paper),
+        Technique::Optimal(shadowlab_shadow::StepDirection::Refitted),
+        Technique::parse("lispsm", Some("lambda=0.30000000000000004")).unwrap(),
+        Technique::parse("logarithmic", Some("n=1e-7")).unwrap(),
+    ];
+    techniques.extend(WarpChoice::named().into_iter().map(Technique::Lispsm));
+    for technique in techniques {
+        assert_eq!(
+            Technique::parse_spec(&technique.spec()),
+            Ok(technique),
+            "{}",
+            technique.spec()
+        );
+    }
+    assert_eq!(
+        Technique::parse("lispsm", Some("minimax")).unwrap().spec(),
+        "lispsm:minimax"
+    );
+    assert_eq!(Technique::Given.spec(), "given");
+    assert!(Technique::parse_spec("given").is_err());
+    let input = directional_scenes().next().unwrap().1;
+    assert!(matches!(
+        plan(&input, Technique::Given),
+        Err(shadowlab_shadow::ShadowError::NotDefined {
+            technique: "given",
+            ..
+        })
+    ));
+    use shadowlab_shadow::Bias;
+    for bias in [
+        Bias::None,
+        Bias::Constant { offset: 0.1 + 0.2 },
+        Bias::Constant { offset: -1e-300 },
+        Bias::DEFAULT,
+        Bias::SlopeScaled {
+            constant: 0.0,
+            slope: 1.0 / 3.0,
+        },
+        Bias::SecondDepth,
+        Bias::Midpoint,
+        Bias::DualDepth { max_bias: 2e-3 },
+    ] {
+        assert_eq!(Bias::parse(&bias.to_string()), Ok(bias), "{bias}");
+    }
+    assert_eq!(Bias::DEFAULT.to_string(), "slope:2.0,1e-5");
+}

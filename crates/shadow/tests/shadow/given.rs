@@ -1,0 +1,150 @@
+//! Maps given rather than rendered, and lookups chosen per partition (`shadows_of`): a map's own
+//! depths given back make the same map and the same lookups; given depths are stored in their
+//! format; each partition is read with its own bias.
+
+use glam::DVec3;
+use shadowlab_raster::{DepthFormat, NO_TRIANGLE, RasterError};
+use shadowlab_scene::{Scene, builtin_scene};
+use shadowlab_shadow::{
+    Bias, Filter, FrameOptions, GivenDepths, LightMaps, LightSource, Lookup, MapSource,
+    PartitionMap, PlanOptions, ShadowError, ShadowMap, Splits, Technique, eye_pass, plan_frame,
+    render_shadows, scene_eye, serving, shadows_of,
+};
+
+/// `outdoor` at a small eye image.
+fn scene() -> Scene {
+    let mut scene = builtin_scene("outdoor").unwrap();
+    (scene.camera.width, scene.camera.height) = (128, 96);
+    scene
+}
+
+fn options(partitions: usize) -> FrameOptions {
+    FrameOptions {
+        plan: PlanOptions {
+            partitions,
+            splits: Splits::Logarithmic,
+            ..PlanOptions::new(Technique::Uniform)
+        },
+        resolution: 256,
+        format: DepthFormat::F32,
+        lookup: Lookup::new(Bias::DEFAULT, Filter::Nearest),
+        snap_texels: 0,
+    }
+}
+
+/// Claim: the depths of rendered maps, given back as they are, make the same maps and the same
+/// lit fractions, bit for bit.
+#[test]
+fn a_maps_own_depths_given_back_change_nothing() {
+    let scene = scene();
+    let options = options(2);
+    let (eye, nearest) = eye_pass(&scene).unwrap();
+    let rendered = render_shadows(&scene, &options, &eye, nearest, None).unwrap();
+    let lights = rendered
+        .lights
+        .iter()
+        .map(|shadow| LightMaps {
+            light: shadow.light,
+            partitions: shadow
+                .maps
+                .iter()
+                .map(|(partition, map)| PartitionMap {
+                    partition: partition.clone(),
+                    source: MapSource::Depths(GivenDepths {
+                        resolution: map.resolution,
+                        format: map.format,
+                        nearest: map.nearest.clone(),
+                        second: map.second.clone(),
+                    }),
+                    lookup: options.lookup.clone(),
+                })
+                .collect(),
+        })
+        .collect();
+    let given = shadows_of(&scene, &eye, lights, None).unwrap();
+    assert_eq!(given.lights, rendered.lights);
+    assert_eq!(given.lit, rendered.lit);
+    assert_eq!(given.timings.planning, std::time::Duration::ZERO);
+}
+
+/// Claim: given depths are stored as their format stores them, and must fill the map.
+#[test]
+fn given_depths_are_stored_in_their_format_and_fill_the_map() {
+    let scene = scene();
+    let (_, nearest) = eye_pass(&scene).unwrap();
+    let setup = plan_frame(&scene, &options(1), nearest).unwrap()[0][0]
+        .setup
+        .clone();
+    let depths = vec![0.3, 1.0, 0.0, 0.123_456_789];
+    let map = ShadowMap::from_depths(
+        setup.clone(),
+        2,
+        DepthFormat::Unorm16,
+        depths.clone(),
+        Some(depths.clone()),
+    )
+    .unwrap();
+    let unorm16 = |z: f64| (z * 65535.0).round() / 65535.0;
+    let expected: Vec<f64> = depths.iter().map(|z| unorm16(*z)).collect();
+    assert_eq!(map.nearest, expected);
+    assert_eq!(map.second, Some(expected));
+    assert_ne!(map.nearest[0], 0.3);
+    let short = ShadowMap::from_depths(setup, 3, DepthFormat::F32, depths, None);
+    assert_eq!(
+        short,
+        Err(ShadowError::Raster(RasterError::ImageSize {
+            width: 3,
+            height: 3,
+            values: 4
+        }))
+    );
+}
+
+/// Claim: each partition is read with its own lookup. With a bias past every depth on the near
+/// partition and one below every depth on the far one, every pixel the near one serves is lit and
+/// every pixel the far one serves is shadowed (both maps cover every visible point).
+#[test]
+fn each_partition_is_read_with_its_own_lookup() {
+    let scene = scene();
+    let options = options(2);
+    let (eye, nearest) = eye_pass(&scene).unwrap();
+    let planned = plan_frame(&scene, &options, nearest).unwrap();
+    let offset = |offset: f64| Lookup::new(Bias::Constant { offset }, Filter::Nearest);
+    let lights = scene
+        .lights
+        .iter()
+        .zip(planned)
+        .map(|(light, partitions)| LightMaps {
+            light: LightSource::from_scene(light),
+            partitions: partitions
+                .into_iter()
+                .enumerate()
+                .map(|(k, partition)| PartitionMap {
+                    partition,
+                    source: MapSource::Render(shadowlab_shadow::MapOptions {
+                        resolution: options.resolution,
+                        format: options.format,
+                        second_depth: false,
+                    }),
+                    lookup: offset(if k == 0 { 2.0 } else { -2.0 }),
+                })
+                .collect(),
+        })
+        .collect();
+    let mixed = shadows_of(&scene, &eye, lights, None).unwrap();
+    let view = scene_eye(&scene);
+    let (e, v) = (view.pose.eye(), view.pose.forward());
+    let maps = &mixed.lights[0].maps;
+    let mut served = [0; 2];
+    for pixel in (0..eye.triangle.len()).filter(|p| eye.triangle[*p] != NO_TRIANGLE) {
+        let point: DVec3 = eye.position[pixel];
+        let k = serving(maps, |(p, _)| p, point, (point - e).dot(v));
+        served[k] += 1;
+        let expected = if k == 0 { 1.0 } else { 0.0 };
+        assert_eq!(
+            mixed.lit[0][pixel], expected,
+            "pixel {pixel}, partition {k}"
+        );
+    }
+    assert!(served[0] > 0 && served[1] > 0, "{served:?}");
+}
