@@ -120,12 +120,20 @@ pub(crate) fn analyze(args: &AnalyzeArgs) -> Result<(), CliError> {
             };
             let eye = &observed.eye.image;
             if !frame_exported {
+                exporter.add_scene(&mut set, &scene)?;
                 exporter.add_frame(&mut set, eye, observed.truth)?;
                 frame_exported = true;
             }
+            let combination = exports::combination_dir(observed.setting);
+            exporter.add_setup(
+                &mut set,
+                &combination,
+                &scene,
+                &study::frame_options(&options, observed.setting),
+            )?;
             exporter.add_shadows(
                 &mut set,
-                &exports::combination_dir(observed.setting),
+                &combination,
                 (eye, observed.truth),
                 (&observed.shadows.lights, &observed.shadows.lit),
                 observed.footprints,

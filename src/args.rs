@@ -54,6 +54,25 @@ pub(crate) enum Command {
     /// Walk the camera and count the pixels whose shadow flips while the truth does not
     /// (shimmer), per technique, with and without texel snapping.
     Temporal(TemporalArgs),
+    /// Measure an engine's own shadow set-up (a set-up file: per frame, light and partition its
+    /// matrices, map size, format, bias, filter, optionally its depth images) against the exact
+    /// truth, as analyze measures a technique; over several frames, its shimmer too.
+    Evaluate(EvaluateArgs),
+}
+
+/// Arguments of `shadowlab evaluate`.
+#[derive(Debug, Args)]
+pub(crate) struct EvaluateArgs {
+    #[command(flatten)]
+    pub(crate) scene: SceneArg,
+    /// The set-up file (JSON, docs/setup-format.md), e.g. written by `inspect --setup-json`.
+    #[arg(long, value_name = "FILE")]
+    pub(crate) setup: PathBuf,
+    #[command(flatten)]
+    pub(crate) memory: MemoryArgs,
+    /// Directory to write into. Default: out/evaluate/SCENE.
+    #[arg(long)]
+    pub(crate) out: Option<PathBuf>,
 }
 
 /// A value that may begin with `-` (flags that take one accept it, so that the flag's own check
@@ -411,6 +430,10 @@ pub(crate) struct InspectArgs {
     /// Print one JSON object instead of text.
     #[arg(long)]
     pub(crate) json: bool,
+    /// Also write the set-up as a set-up file (docs/setup-format.md), which `evaluate --setup`
+    /// reads: every technique that is a matrix per partition (not the logarithmic map).
+    #[arg(long, value_name = "FILE")]
+    pub(crate) setup_json: Option<PathBuf>,
 }
 
 /// Arguments of `shadowlab render-mesh`.

@@ -5,12 +5,13 @@
 use serde_json::{Value, json};
 use shadowlab_analysis::export::{ExportFile, eye_files, index, shadow_files, truth_files};
 use shadowlab_analysis::report::{filter_label, technique_label};
+use shadowlab_analysis::setup_file::{SetupError, setup_for};
 use shadowlab_analysis::study::Setting;
 use shadowlab_analysis::truth::Truth;
 use shadowlab_analysis::{AnalysisError, aliasing::Footprint};
 use shadowlab_raster::EyeImage;
-use shadowlab_scene::Scene;
-use shadowlab_shadow::LightShadow;
+use shadowlab_scene::{Scene, export_glb, export_obj};
+use shadowlab_shadow::{FrameOptions, LightShadow};
 
 use crate::error::CliError;
 use crate::output::{OutputSet, slug};
@@ -79,6 +80,61 @@ impl Exporter {
     ) -> Result<(), CliError> {
         self.add(set, eye_files(eye).map_err(failure)?)?;
         self.add(set, truth_files(truth, eye).map_err(failure)?)
+    }
+
+    /// The assembled scene — world-space geometry, camera and lights — as `scene.glb` (f32, as
+    /// glTF stores it) and `scene.obj` (every f64, camera and lights in its comment header), so
+    /// another renderer reproduces the frame.
+    pub(crate) fn add_scene(
+        &mut self,
+        set: &mut OutputSet<'_>,
+        scene: &Scene,
+    ) -> Result<(), CliError> {
+        let glb = export_glb(scene)
+            .map_err(|e| CliError::Input(format!("--export: {}: {e}", scene.name)))?;
+        self.add(
+            set,
+            vec![
+                ExportFile {
+                    name: "scene.glb".into(),
+                    bytes: glb,
+                    entry: json!({"what": "the scene in world space with its camera and lights \
+                        (KHR_lights_punctual), positions rounded to f32 as glTF stores them"}),
+                },
+                ExportFile {
+                    name: "scene.obj".into(),
+                    bytes: export_obj(scene).into_bytes(),
+                    entry: json!({"what": "the scene's geometry in world space at full f64 \
+                        precision; camera and lights in the comment header"}),
+                },
+            ],
+        )
+    }
+
+    /// The set-up of one combination (`{combination}/setup.json`, docs/setup-format.md): its
+    /// matrices per light and partition, which `evaluate --setup` reads; nothing for a technique
+    /// that is not a matrix per partition (the logarithmic map).
+    pub(crate) fn add_setup(
+        &mut self,
+        set: &mut OutputSet<'_>,
+        combination: &str,
+        scene: &Scene,
+        options: &FrameOptions,
+    ) -> Result<(), CliError> {
+        match setup_for(scene, options) {
+            Ok(setup) => self.add(
+                set,
+                vec![ExportFile {
+                    name: format!("{combination}/setup.json"),
+                    bytes: setup.to_json().into_bytes(),
+                    entry: json!({"what": "the combination's shadow set-up: per light and \
+                        partition its view and projection matrices, depth range, map size, \
+                        format, bias and filter (docs/setup-format.md)"}),
+                }],
+            ),
+            Err(SetupError::NotRepresentable { .. }) => Ok(()),
+            Err(e) => Err(CliError::Failure(anyhow::anyhow!("--export: {e}"))),
+        }
     }
 
     /// One combination's lookups, classes, footprints and maps under `combination`.

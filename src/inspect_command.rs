@@ -2,14 +2,17 @@
 
 use glam::{DMat4, DVec3};
 use serde_json::{Value, json};
+use shadowlab_analysis::AnalysisError;
+use shadowlab_analysis::setup_file::{SetupError, setup_for};
 use shadowlab_shadow::optimal::{self, OptimalOptions, OptimalReport};
 use shadowlab_shadow::{
-    LightSetup, ShadowError, ShadowMapping, Technique, eye_pass, plan_light, scene_input,
+    FrameOptions, LightSetup, ShadowError, ShadowMapping, Technique, eye_pass, plan_light,
+    scene_input,
 };
 
 use crate::args::InspectArgs;
 use crate::error::CliError;
-use crate::output::print_line;
+use crate::output::{OutputFile, TEXT_BOUND, print_line};
 use crate::shadow_settings::resolve;
 
 /// A matrix as 16 numbers, row-major.
@@ -72,6 +75,12 @@ fn setup_json(setup: &LightSetup) -> Value {
 pub(crate) fn run(args: &InspectArgs) -> Result<(), CliError> {
     let resolved = resolve(&args.shadow)?;
     let scene = &resolved.scene;
+    // Checked before any work; written after the set-up is printed.
+    let setup_file = args
+        .setup_json
+        .clone()
+        .map(|path| OutputFile::check(path, "--setup-json", TEXT_BOUND))
+        .transpose()?;
     let (_, nearest) =
         eye_pass(scene).map_err(|e| CliError::Failure(anyhow::anyhow!("eye pass: {e}")))?;
     let mut lights = Vec::new();
@@ -225,6 +234,26 @@ pub(crate) fn run(args: &InspectArgs) -> Result<(), CliError> {
                     ))?;
                 }
             }
+        }
+    }
+    if let Some(file) = setup_file {
+        let options = FrameOptions {
+            plan: resolved.plan.clone(),
+            resolution: resolved.resolution,
+            format: resolved.format,
+            lookup: resolved.lookup.clone(),
+            snap_texels: 0,
+        };
+        let setup = setup_for(scene, &options).map_err(|e| match e {
+            SetupError::NotRepresentable { .. }
+            | SetupError::Analysis(AnalysisError::Shadow(ShadowError::NotDefined { .. })) => {
+                CliError::Input(format!("invalid --setup-json: {e}"))
+            }
+            other => CliError::Failure(anyhow::anyhow!("{other}")),
+        })?;
+        file.write(setup.to_json().as_bytes())?;
+        if !args.json {
+            print_line(&file.path().display().to_string())?;
         }
     }
     Ok(())

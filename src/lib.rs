@@ -13,6 +13,7 @@ mod args;
 mod compare_command;
 mod curves_command;
 mod error;
+mod evaluate_command;
 mod exports;
 mod inspect_command;
 mod memory;
@@ -53,6 +54,7 @@ where
         Command::Compare(args) => compare_command::run(&args),
         Command::Analyze(args) => analyze_command::analyze(&args),
         Command::SweepAngle(args) => analyze_command::sweep_angle(&args),
+        Command::Evaluate(args) => evaluate_command::run(&args),
         Command::Temporal(args) => analyze_command::temporal(&args),
     };
     match result {

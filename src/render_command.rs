@@ -146,7 +146,12 @@ pub(crate) fn run(args: &RenderArgs) -> Result<(), CliError> {
         set.add(name, bytes)?;
     }
     if args.export {
-        export(&mut set, scene, &frame, &exports::combination_dir(&setting))?;
+        export(
+            &mut set,
+            scene,
+            (&frame, &options),
+            &exports::combination_dir(&setting),
+        )?;
     }
     set.finish()?;
     for (file, _) in &files {
@@ -162,7 +167,7 @@ pub(crate) fn run(args: &RenderArgs) -> Result<(), CliError> {
 fn export(
     set: &mut crate::output::OutputSet<'_>,
     scene: &Scene,
-    frame: &Frame,
+    (frame, options): (&Frame, &FrameOptions),
     combination: &str,
 ) -> Result<(), CliError> {
     let spinner = progress::spinner("render: the exact truth for --export");
@@ -171,7 +176,9 @@ fn export(
     let truth = truth.map_err(|e| CliError::Input(format!("{}: {e}", scene.name)))?;
     let footprints = footprints_of(scene, &frame.eye, &frame.lights);
     let mut exporter = Exporter::new();
+    exporter.add_scene(set, scene)?;
     exporter.add_frame(set, &frame.eye, &truth)?;
+    exporter.add_setup(set, combination, scene, options)?;
     exporter.add_shadows(
         set,
         combination,

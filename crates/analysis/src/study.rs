@@ -214,23 +214,29 @@ pub fn render(
 ) -> Result<Shadows, ShadowError> {
     render_shadows(
         scene,
-        &FrameOptions {
-            plan: PlanOptions {
-                technique: setting.technique,
-                partitions: setting.partitions,
-                splits: options.splits,
-                focus: options.focus,
-                optimal: options.optimal,
-            },
-            resolution: setting.resolution,
-            format: options.format,
-            lookup: Lookup::new(options.bias, setting.filter),
-            snap_texels: 0,
-        },
+        &frame_options(options, setting),
         &eye.image,
         eye.nearest_visible,
         Some(bvh),
     )
+}
+
+/// The frame options of one combination of a study (no snapping).
+#[must_use]
+pub fn frame_options(options: &StudyOptions, setting: &Setting) -> FrameOptions {
+    FrameOptions {
+        plan: PlanOptions {
+            technique: setting.technique,
+            partitions: setting.partitions,
+            splits: options.splits,
+            focus: options.focus,
+            optimal: options.optimal,
+        },
+        resolution: setting.resolution,
+        format: options.format,
+        lookup: Lookup::new(options.bias, setting.filter),
+        snap_texels: 0,
+    }
 }
 
 /// The scene's eye pass, made once per study.
