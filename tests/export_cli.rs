@@ -291,7 +291,12 @@ fn evaluate_of_a_written_set_up_is_analyze() {
         };
         let (e, a) = (results(&evaluated), results(&analyzed));
         let (e, a) = (&e["measurements"][0], &a["measurements"][0]);
-        for key in ["misclassified", "falsely_lit", "falsely_shadowed", "footprint"] {
+        for key in [
+            "misclassified",
+            "falsely_lit",
+            "falsely_shadowed",
+            "footprint",
+        ] {
             assert_eq!(e[key], a[key], "{technique}: {key}");
         }
         // The export holds the same set-up and the scene.
@@ -301,8 +306,16 @@ fn evaluate_of_a_written_set_up_is_analyze() {
                 .unwrap(),
             fs::read_to_string(&setup).unwrap()
         );
-        assert!(fs::read(export.join("scene.glb")).unwrap().starts_with(b"glTF"));
-        assert!(fs::read_to_string(export.join("scene.obj")).unwrap().contains("\nv "));
+        assert!(
+            fs::read(export.join("scene.glb"))
+                .unwrap()
+                .starts_with(b"glTF")
+        );
+        assert!(
+            fs::read_to_string(export.join("scene.obj"))
+                .unwrap()
+                .contains("\nv ")
+        );
     }
     // The logarithmic map is not a matrix per partition: refused, naming the flag.
     let output = shadowlab(
@@ -317,5 +330,9 @@ fn evaluate_of_a_written_set_up_is_analyze() {
         None,
     );
     assert_eq!(output.status.code(), Some(2), "{}", stderr(&output));
-    assert!(stderr(&output).contains("--setup-json"), "{}", stderr(&output));
+    assert!(
+        stderr(&output).contains("--setup-json"),
+        "{}",
+        stderr(&output)
+    );
 }

@@ -238,9 +238,10 @@ impl ConvexPolyhedron {
         Scale::of_points(&self.vertices)
     }
 
-    /// The volume (divergence theorem over a fan triangulation of each face, about the vertex mean;
-    /// see [`Moments`]): positive whenever the vertex mean lies inside, even for bodies so thin and
-    /// long that the plain sum of triple products loses every digit and its sign.
+    /// The volume (divergence theorem over a fan triangulation of each face, about the vertex
+    /// mean, each tetrahedron's determinant by `robust::orient3d` on rescaled coordinates):
+    /// positive whenever the vertex mean lies inside, even for bodies so thin and long that the
+    /// plain sum of triple products loses every digit and its sign.
     #[must_use]
     pub fn volume(&self) -> f64 {
         self.moments().volume()
