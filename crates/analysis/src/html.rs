@@ -36,8 +36,8 @@ use serde_json::json;
 use crate::classify::{BACKGROUND, CORRECT_LIT, CORRECT_SHADOW, FALSELY_LIT, FALSELY_SHADOWED};
 use crate::document::{self, Block, escape_html};
 use crate::images::{ClassCounts, HeatScale, NO_VALUE, NO_VALUE_MEANING, VIRIDIS};
+use crate::labels::{filter_label, technique_label};
 use crate::pictures::{self, PictureKind};
-use crate::report::technique_label;
 use crate::study::Study;
 
 /// The page's style.
@@ -422,7 +422,7 @@ fn pictures_section(study: &Study) -> String {
          <code>images/</code>.</p>",
         first.setting.resolution,
         first.setting.partitions,
-        escape_html(&crate::report::filter_label(&first.setting.filter))
+        escape_html(&filter_label(&first.setting.filter))
     )
     .expect("writing to a string");
     html.push_str("<div class=\"controls\">\n<div class=\"techniques\" role=\"group\" aria-label=\"technique\">Technique: ");

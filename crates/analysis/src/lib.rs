@@ -52,6 +52,7 @@ pub mod evaluate;
 pub mod export;
 mod html;
 pub mod images;
+mod labels;
 pub mod pictures;
 pub mod report;
 pub mod setup_file;

@@ -14,7 +14,7 @@ use shadowlab_shadow::Technique;
 
 use crate::error::AnalysisError;
 use crate::images::{ClassCounts, difference_legend, footprint_colour_bar, footprint_legend};
-use crate::report::{filter_label, technique_label};
+use crate::labels::{filter_label, technique_label};
 use crate::study::{Pictures, Setting, Study};
 
 /// One of the three pictures of a combination.

@@ -92,7 +92,7 @@ pub use mesh::{DEFAULT_GROUP_NAME, MAX_COORDINATE, MIN_EXTENT, Mesh, MeshError};
 pub use normals::FALLBACK_NORMAL;
 pub use obj::{ObjElement, ObjError, ObjProblem, load_obj, parse_obj};
 pub use procedural::ShapeError;
-pub use read::{MAX_OBJ_BYTES, MAX_SCENE_FILE_BYTES, ReadError};
+pub use read::{MAX_OBJ_BYTES, MAX_SCENE_FILE_BYTES, ReadError, read_bounded};
 pub use scene::{Camera, Scene, SceneLight, ShadowSettings};
 pub use scene_file::{
     LoadedScene, SceneFileError, SceneFileProblem, load_gltf_scene, load_scene,

@@ -118,8 +118,12 @@ fn bytes(count: u64) -> String {
 ///
 /// The path is checked with `stat` before it is opened (opening a FIFO would block until a writer
 /// came), and the opened file again (it may have been replaced); at most `limit + 1` bytes are
-/// read, so a file that grows while it is read is refused too.
-pub(crate) fn read_bounded(
+/// read, so a file that grows while it is read is refused too. Every input file of shadowlab
+/// (OBJ, scene, glTF and set-up files, depth images) is read with it.
+///
+/// # Errors
+/// [`ReadError::Io`], [`ReadError::NotRegularFile`], [`ReadError::TooLarge`].
+pub fn read_bounded(
     path: &Path,
     limit: u64,
     what: &'static str,

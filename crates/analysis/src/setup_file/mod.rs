@@ -25,10 +25,10 @@ pub use file::{
     CameraEntry, Conventions, FORMAT, FrameEntry, Handedness, LightEntry, MatrixOrder,
     NdcDepthRange, NdcY, PartitionEntry, SetupFile, VERSION,
 };
-pub(crate) use read::read_bounded;
 pub use read::{
     CAMERA_TOLERANCE, DEPTH_IMAGE_SLACK_BYTES, DepthImage, FrameCamera, ImageKind,
     MAX_SETUP_FILE_BYTES, MAX_SETUP_FRAMES, MAX_SETUP_PARTITIONS, Setup, SetupFrame,
     SetupPartition, load_setup, parse_setup,
 };
+pub(crate) use shadowlab_scene::read_bounded;
 pub use write::setup_for;

@@ -2,15 +2,13 @@
 //! converted once into the library's convention, depth images located (they are read when a frame
 //! is evaluated, so that a long file's images are never all in memory).
 
-use std::fs::File;
-use std::io::Read as _;
 use std::path::{Path, PathBuf};
 
 use glam::{DMat3, DMat4, DVec3};
 use serde::de::DeserializeOwned;
 use shadowlab_hull::{Perspective, ViewPose};
 use shadowlab_raster::{DepthFormat, MAX_TARGET_SIZE};
-use shadowlab_scene::ReadError;
+use shadowlab_scene::read_bounded;
 use shadowlab_scene::scene_file::{MAX_DEPTH_RATIO, MAX_IMAGE_SIDE};
 use shadowlab_shadow::{Bias, Filter, Lookup, Technique};
 
@@ -620,77 +618,4 @@ fn decompose(m: &DMat4) -> Result<(ViewPose, Perspective), String> {
             )
         })?;
     Ok((pose, projection))
-}
-
-/// The contents of the regular file `path`, at most `limit` bytes (checked with `stat` before it
-/// is opened, so that a FIFO does not block, and again on the handle; at most `limit + 1` bytes
-/// are read). The same bounded read as `shadowlab-scene`'s for its inputs, whose read is private
-/// to it; its [`ReadError`] is the error, so callers tell a missing file from a failing disk the
-/// same way.
-pub(crate) fn read_bounded(
-    path: &Path,
-    limit: u64,
-    what: &'static str,
-    limit_name: &'static str,
-) -> Result<Vec<u8>, ReadError> {
-    let io_error = |source| ReadError::Io {
-        path: path.to_owned(),
-        source,
-    };
-    let too_large = || ReadError::TooLarge {
-        path: path.to_owned(),
-        what,
-        limit,
-        limit_name,
-    };
-    let regular = |metadata: &std::fs::Metadata| {
-        if metadata.is_file() {
-            Ok(())
-        } else {
-            Err(ReadError::NotRegularFile {
-                path: path.to_owned(),
-                kind: kind_name(&metadata.file_type()),
-            })
-        }
-    };
-    regular(&std::fs::metadata(path).map_err(io_error)?)?;
-    let file = File::open(path).map_err(io_error)?;
-    let metadata = file.metadata().map_err(io_error)?;
-    regular(&metadata)?;
-    if metadata.len() > limit {
-        return Err(too_large());
-    }
-    let mut bytes = Vec::new();
-    file.take(limit.saturating_add(1))
-        .read_to_end(&mut bytes)
-        .map_err(io_error)?;
-    if bytes.len() as u64 > limit {
-        return Err(too_large());
-    }
-    Ok(bytes)
-}
-
-/// What a file that is not regular is, in words.
-fn kind_name(kind: &std::fs::FileType) -> &'static str {
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::FileTypeExt;
-        if kind.is_char_device() {
-            return "a character device";
-        }
-        if kind.is_block_device() {
-            return "a block device";
-        }
-        if kind.is_fifo() {
-            return "a FIFO";
-        }
-        if kind.is_socket() {
-            return "a socket";
-        }
-    }
-    if kind.is_dir() {
-        "a directory"
-    } else {
-        "not a regular file"
-    }
 }

@@ -1,0 +1,25 @@
+//! How techniques and filters are named in tables, pictures and pages (the report, its HTML page,
+//! the pictures' titles, sweeps), in one place below all of them.
+
+use shadowlab_shadow::{Filter, Technique};
+
+/// The technique's name in tables: its key, and its parameter after a slash where it is not the
+/// default (`lispsm/minimax`, `logarithmic/faces`, `optimal/refit`).
+#[must_use]
+pub fn technique_label(technique: Technique) -> String {
+    match technique.parameter() {
+        Some(parameter) => format!("{}/{parameter}", technique.key()),
+        None => technique.key().into(),
+    }
+}
+
+/// A filter as the command line writes it.
+#[must_use]
+pub fn filter_label(filter: &Filter) -> String {
+    match filter {
+        Filter::Nearest => "nearest".into(),
+        Filter::Pcf { size } => format!("pcf:{size}"),
+        Filter::Disk { taps, radius, seed } => format!("disk:{taps},{radius},{seed}"),
+        Filter::Vsm { size, min_variance } => format!("vsm:{size},{min_variance}"),
+    }
+}
