@@ -110,9 +110,12 @@ pub(crate) fn resolve(args: &ShadowArgs) -> Result<Resolved, CliError> {
         )?
         .unwrap_or(DEFAULT_RESOLUTION);
     let partitions = table
-        .or_field(args.partitions, settings.splits.as_ref(), "splits", |&k| {
-            in_range(k, 1, MAX_PARTITIONS)
-        })?
+        .or_field(
+            args.partitions,
+            settings.partitions.as_ref(),
+            "partitions",
+            |&k| in_range(k, 1, MAX_PARTITIONS),
+        )?
         .unwrap_or(1);
     let optimal = optimizer(&args.optimizer, Some(&table))?;
     Ok(Resolved {

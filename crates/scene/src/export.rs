@@ -9,7 +9,8 @@
 //! `UNSIGNED_INT` indices over the vertices its triangles use (in their order in the scene's
 //! mesh; vertices no triangle uses are not written), at the identity transform: positions are in
 //! world space. The camera is a node with a perspective camera (`yfov`, `znear`, `zfar`, and
-//! `aspectRatio` = image width / height); each light a node with a `KHR_lights_punctual` light
+//! `aspectRatio` = image width / height, and the image size in its `extras` as
+//! `{"shadowlab": {"image": [W, H]}}`, which the reader takes); each light a node with a `KHR_lights_punctual` light
 //! (directional, or spot with `outerConeAngle` = half the cone and `range` = the spot's far
 //! distance). The scene's `name` is the glTF scene's name.
 //!
@@ -22,9 +23,8 @@
 //! mesh is a fixed point: exporting and reading it again gives the same mesh bit for bit
 //! (positions, normals, triangles, groups) and the same projections, while camera and light
 //! directions, re-derived from f32 rotations, agree to f32 precision (tested). What glTF does not
-//! hold is lost: the image size (only its aspect ratio is written;
-//! the reader takes the scene files' default image), a spot light's near distance (the reader
-//! derives it from the bounds) and the `[shadow]` settings.
+//! hold is lost: a spot light's near distance (the reader derives it from the bounds) and the
+//! `[shadow]` settings.
 //!
 //! # OBJ
 //! `v` and `vn` lines for every vertex in order, then per group a `g` line with the group's name
@@ -286,6 +286,7 @@ fn document(scene: &Scene, embed: Option<()>) -> Result<(Value, Vec<u8>), Export
             "zfar": f32_value(projection.far()),
             "aspectRatio": f32_value(f64::from(camera.width) / f64::from(camera.height)),
         },
+        "extras": { "shadowlab": { "image": [camera.width, camera.height] } },
     }]);
     let mut lights = Vec::new();
     for (index, light) in scene.lights.iter().enumerate() {

@@ -118,8 +118,8 @@ pub struct ShadowSettings {
     pub focus: Option<String>,
     /// The shadow map's width and height in texels.
     pub resolution: Option<u32>,
-    /// The number of cascades (split frusta).
-    pub splits: Option<u32>,
+    /// The number of z-partitions (cascades); the field `partitions` (or `splits`, its former name).
+    pub partitions: Option<u32>,
     /// How the view frustum is split, e.g. `"practical"`.
     pub split_scheme: Option<String>,
     /// The depth bias.

@@ -116,6 +116,10 @@ pub struct GltfCamera {
     pub far: Option<f64>,
     /// `aspectRatio`, if the file gives one (> 0).
     pub aspect_ratio: Option<f64>,
+    /// The image size in pixels, `[width, height]`, if the camera's `extras` record one as
+    /// shadowlab's export writes it: `{"shadowlab": {"image": [W, H]}}` (other extras are the
+    /// application's and ignored; the range is checked where the scene is assembled).
+    pub image: Option<[u32; 2]>,
 }
 
 /// A `KHR_lights_punctual` light of a glTF scene that shadowlab represents, placed by its node.

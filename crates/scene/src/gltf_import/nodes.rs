@@ -229,6 +229,7 @@ pub(super) fn camera(
         .map(|aspect| checked("aspectRatio", aspect, |v| v > 0.0, || "> 0".to_owned()))
         .transpose()
         .map_err(error)?;
+    let image = shadowlab_image(json_camera.extras.as_deref()).map_err(error)?;
     let pose = pose_of(&placed.world).map_err(error)?;
     Ok(Some(GltfCamera {
         node: node_object,
@@ -238,7 +239,37 @@ pub(super) fn camera(
         near,
         far,
         aspect_ratio,
+        image,
     }))
+}
+
+/// The image size a camera's `extras` record under `shadowlab.image` (shadowlab's export writes
+/// it: glTF cameras have an aspect ratio, not a size); `None` where the extras are absent, not an
+/// object, or hold no `shadowlab` key — those are the application's.
+fn shadowlab_image(
+    extras: Option<&serde_json::value::RawValue>,
+) -> Result<Option<[u32; 2]>, GltfProblem> {
+    let Some(extras) = extras else {
+        return Ok(None);
+    };
+    let Ok(serde_json::Value::Object(extras)) = serde_json::from_str(extras.get()) else {
+        return Ok(None);
+    };
+    let Some(shadowlab) = extras.get("shadowlab") else {
+        return Ok(None);
+    };
+    let image = shadowlab
+        .get("image")
+        .ok_or_else(|| GltfProblem::Unusable {
+            reason: "has `extras.shadowlab` without an `image` [width, height]".to_owned(),
+        })?;
+    serde_json::from_value::<[u32; 2]>(image.clone())
+        .map(Some)
+        .map_err(|_| GltfProblem::Unusable {
+            reason: format!(
+                "has `extras.shadowlab.image` = {image}, not [width, height] in whole pixels"
+            ),
+        })
 }
 
 /// The `KHR_lights_punctual` light of `placed`'s node, if it has one that shadowlab represents:

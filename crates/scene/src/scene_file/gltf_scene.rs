@@ -9,7 +9,7 @@ use super::checks::Checker;
 use super::error::SceneFileError;
 use super::raw::RawCamera;
 use super::view::{self, corner_depths, default_far, default_near};
-use super::{DEFAULT_IMAGE, LoadedScene, MAX_DEPTH_RATIO};
+use super::{DEFAULT_IMAGE, LoadedScene, MAX_DEPTH_RATIO, MAX_IMAGE_SIDE};
 use crate::gltf_import::{
     GltfCamera, GltfError, GltfImport, GltfLight, GltfLightKind, GltfProblem, GltfSkipped,
     GltfWarning,
@@ -24,22 +24,12 @@ pub(super) fn scene(import: GltfImport, path: &Path) -> Result<LoadedScene, Scen
         Some(camera) => camera_of(camera, &import.mesh.bounds(), path, &mut warnings)?,
         None => view::camera(checker, &RawCamera::default(), &import.mesh.bounds())?,
     };
-    let lights = if import.lights.is_empty() {
-        vec![view::default_sun(checker)?]
-    } else {
-        import
-            .lights
-            .iter()
-            .map(|light| light_of(light, &import.mesh.bounds(), path))
-            .collect::<Result<_, _>>()?
-    };
-    let name = import.scene_name.unwrap_or_else(|| {
-        let stem = path.file_stem().unwrap_or_default();
-        stem.to_string_lossy().into_owned()
-    });
+    let lights = view::lights_or_default_sun(checker, &import.lights, |_, light| {
+        light_of(light, &import.mesh.bounds(), path)
+    })?;
     Ok(LoadedScene {
         scene: Scene {
-            name,
+            name: view::scene_name(import.scene_name, path),
             camera,
             lights,
             mesh: import.mesh,
@@ -63,8 +53,8 @@ fn object_error(
 }
 
 /// The eye of a glTF camera: its pose, `yfov`, `znear`; `zfar`, or for an infinite projection
-/// the scene files' default far plane (just beyond the scene's bounds); the image of
-/// [`DEFAULT_IMAGE`], whose aspect replaces `aspectRatio` (a warning where they differ at f32
+/// the scene files' default far plane (just beyond the scene's bounds); the image the camera's
+/// `extras` record (shadowlab's export), else [`DEFAULT_IMAGE`], whose aspect replaces `aspectRatio` (a warning where they differ at f32
 /// precision). A `zfar` more than [`MAX_DEPTH_RATIO`] times `znear` is brought in to the default
 /// far plane, with a warning, if that is close enough.
 fn camera_of(
@@ -74,7 +64,21 @@ fn camera_of(
     warnings: &mut Vec<GltfWarning>,
 ) -> Result<Camera, SceneFileError> {
     let objects = vec![camera.node.clone(), camera.camera.clone()];
-    let [width, height] = DEFAULT_IMAGE;
+    let [width, height] = camera.image.unwrap_or(DEFAULT_IMAGE);
+    if let Some(side) = [width, height]
+        .into_iter()
+        .find(|side| !(1..=MAX_IMAGE_SIDE).contains(side))
+    {
+        return Err(object_error(
+            path,
+            objects,
+            GltfProblem::OutOfRange {
+                property: "extras.shadowlab.image",
+                value: f64::from(side),
+                requirement: format!("each side in 1..={MAX_IMAGE_SIDE} pixels (MAX_IMAGE_SIDE)"),
+            },
+        ));
+    }
     let aspect = f64::from(width) / f64::from(height);
     let (_, farthest) = corner_depths(bounds, &camera.pose);
     let derived = default_far(farthest).filter(|&far| far > camera.near);

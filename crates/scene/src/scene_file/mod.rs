@@ -349,22 +349,12 @@ pub(crate) fn parse(
     let mesh = meshes::scene_mesh(checker, &raw.mesh, obj_files, &mut warnings)?;
     let bounds = mesh.bounds();
     let camera = view::camera(checker, &raw.camera, &bounds)?;
-    let lights = if raw.light.is_empty() {
-        vec![view::default_sun(checker)?]
-    } else {
-        raw.light
-            .iter()
-            .enumerate()
-            .map(|(index, light)| view::light(checker, index, light, &bounds))
-            .collect::<Result<_, _>>()?
-    };
-    let name = raw.name.unwrap_or_else(|| {
-        let stem = path.file_stem().unwrap_or_default();
-        stem.to_string_lossy().into_owned()
-    });
+    let lights = view::lights_or_default_sun(checker, &raw.light, |index, light| {
+        view::light(checker, index, light, &bounds)
+    })?;
     Ok(LoadedScene {
         scene: Scene {
-            name,
+            name: view::scene_name(raw.name, path),
             camera,
             lights,
             mesh,
@@ -388,7 +378,7 @@ fn shadow_settings(checker: Checker<'_>, raw: RawShadow) -> Result<ShadowSetting
         technique: raw.technique,
         parameter: raw.parameter,
         resolution: raw.resolution,
-        splits: raw.splits,
+        partitions: raw.partitions,
         split_scheme: raw.split_scheme,
         bias: raw.bias,
         filter: raw.filter,

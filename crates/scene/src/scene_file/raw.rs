@@ -204,7 +204,9 @@ pub(super) struct RawShadow {
     pub(super) technique: Option<String>,
     pub(super) parameter: Option<String>,
     pub(super) resolution: Option<u32>,
-    pub(super) splits: Option<u32>,
+    /// The number of z-partitions; `splits` is its former name, still read.
+    #[serde(alias = "splits")]
+    pub(super) partitions: Option<u32>,
     pub(super) split_scheme: Option<String>,
     pub(super) bias: Option<String>,
     pub(super) filter: Option<String>,

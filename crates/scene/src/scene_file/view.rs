@@ -1,6 +1,8 @@
 //! `[camera]` and `[[light]]`: poses, projections, and the defaults derived from the scene's
 //! bounds (see the module documentation of [`crate::scene_file`] for the rules).
 
+use std::path::Path;
+
 use glam::DVec3;
 use shadowlab_hull::{HullError, Perspective, ViewPose};
 
@@ -88,8 +90,34 @@ pub(super) fn camera(
 
 /// The light that a scene without `[[light]]` entries gets: a directional light travelling along
 /// [`DEFAULT_SUN_DIRECTION`], exactly as a `[[light]]` without fields.
-pub(super) fn default_sun(checker: Checker<'_>) -> Result<SceneLight, SceneFileError> {
+fn default_sun(checker: Checker<'_>) -> Result<SceneLight, SceneFileError> {
     directional(checker, "light", DEFAULT_SUN_DIRECTION.to_array())
+}
+
+/// The lights of a scene read from `lights` by `read` (with each one's index), or where there are
+/// none, [`default_sun`].
+pub(super) fn lights_or_default_sun<T>(
+    checker: Checker<'_>,
+    lights: &[T],
+    mut read: impl FnMut(usize, &T) -> Result<SceneLight, SceneFileError>,
+) -> Result<Vec<SceneLight>, SceneFileError> {
+    if lights.is_empty() {
+        Ok(vec![default_sun(checker)?])
+    } else {
+        lights
+            .iter()
+            .enumerate()
+            .map(|(index, light)| read(index, light))
+            .collect()
+    }
+}
+
+/// A scene's name: `name` as given, else the stem of the file it was read from.
+pub(super) fn scene_name(name: Option<String>, path: &Path) -> String {
+    name.unwrap_or_else(|| {
+        let stem = path.file_stem().unwrap_or_default();
+        stem.to_string_lossy().into_owned()
+    })
 }
 
 /// A directional light travelling along `direction` (the field `prefix.direction`).

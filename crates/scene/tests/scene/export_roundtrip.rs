@@ -5,8 +5,8 @@
 
 use glam::DVec3;
 use shadowlab_scene::{
-    BUILTIN_SCENES, GltfSkipped, Scene, SceneLight, builtin_scene, export_glb, export_gltf,
-    export_obj, load_gltf_scene, load_obj,
+    BUILTIN_SCENES, Scene, SceneLight, builtin_scene, export_glb, export_gltf, export_obj,
+    load_gltf_scene, load_obj,
 };
 
 use crate::support::ObjDir;
@@ -29,18 +29,13 @@ fn rounded_scalar(value: f64) -> f64 {
     f64::from(value as f32)
 }
 
-/// The scene read back from `bytes` written as `name` in `dir`; only the aspect-ratio warning (an
-/// image that is not the default's 4:3) may come with it.
+/// The scene read back from `bytes` written as `name` in `dir`, without a warning: the camera's
+/// `extras` give its image size, so its aspect ratio is the file's.
 fn read_back(dir: &ObjDir, name: &str, bytes: &[u8]) -> Scene {
     let path = dir.path().join(name);
     std::fs::write(&path, bytes).expect("write the export");
     let loaded = load_gltf_scene(&path, None).expect("the export loads");
-    for warning in &loaded.warnings {
-        assert!(
-            matches!(warning.skipped, GltfSkipped::AspectRatio { .. }),
-            "{warning}"
-        );
-    }
+    assert_eq!(loaded.warnings, [], "{name}");
     loaded.scene
 }
 
@@ -66,7 +61,13 @@ fn a_glb_export_reads_back_as_the_f32_rounding_and_is_then_a_fixed_point() {
         assert_eq!(camera.pose.eye(), rounded(original.pose.eye()), "{name}");
         assert!((camera.pose.forward() - original.pose.forward()).length() < 1e-6);
         assert!((camera.pose.up() - original.pose.up()).length() < 1e-6);
+        assert_eq!(
+            (camera.width, camera.height),
+            (original.width, original.height),
+            "{name}"
+        );
         let (projection, source) = (&camera.projection, &original.projection);
+        assert_eq!(projection.aspect(), source.aspect(), "{name}");
         assert_eq!(projection.fov_y(), rounded_scalar(source.fov_y()), "{name}");
         assert_eq!(projection.near(), rounded_scalar(source.near()), "{name}");
         assert_eq!(projection.far(), rounded_scalar(source.far()), "{name}");

@@ -555,3 +555,66 @@ fn a_scene_file_entry_reads_a_gltf_scene_with_its_transform() {
     assert!(error.to_string().contains("there is no scene 7"), "{error}");
     assert!(Path::new(&dir.path().join("parts.gltf")).exists());
 }
+
+/// A camera's `extras.shadowlab.image` (shadowlab's export writes it) sets the image size, so an
+/// aspect ratio that agrees with it is no warning; other extras are the application's and
+/// ignored; a malformed or out-of-range size is an error naming the camera and the property.
+#[test]
+fn a_camera_s_shadowlab_extras_set_its_image() {
+    let dir = ObjDir::new();
+    let with_extras = |extras: Value| {
+        json!({ "type": "perspective", "extras": extras,
+                "perspective": { "yfov": 0.8, "znear": 0.5, "zfar": 50.0, "aspectRatio": 1.5 } })
+    };
+    let path = write(
+        &dir,
+        "sized.gltf",
+        &lit_file(with_extras(json!({ "shadowlab": { "image": [96, 64] } }))),
+    );
+    let loaded = load_gltf_scene(&path, None).expect("a scene");
+    let camera = &loaded.scene.camera;
+    assert_eq!((camera.width, camera.height), (96, 64));
+    assert_eq!(camera.projection.aspect(), 1.5);
+    assert_eq!(
+        loaded
+            .warnings
+            .iter()
+            .map(|w| w.skipped.clone())
+            .collect::<Vec<_>>(),
+        [GltfSkipped::PointLight]
+    );
+
+    let path = write(
+        &dir,
+        "other.gltf",
+        &lit_file(with_extras(json!({ "engine": { "image": "none" } }))),
+    );
+    let camera = load_gltf_scene(&path, None).expect("a scene").scene.camera;
+    assert_eq!([camera.width, camera.height], DEFAULT_IMAGE);
+
+    for (extras, expected) in [
+        (
+            json!({ "shadowlab": { "image": [96.5, 64] } }),
+            "`extras.shadowlab.image` = [96.5,64], not [width, height] in whole pixels",
+        ),
+        (
+            json!({ "shadowlab": {} }),
+            "`extras.shadowlab` without an `image`",
+        ),
+        (
+            json!({ "shadowlab": { "image": [0, 64] } }),
+            "extras.shadowlab.image",
+        ),
+        (
+            json!({ "shadowlab": { "image": [96, 20000] } }),
+            "each side in 1..=16384 pixels",
+        ),
+    ] {
+        let path = write(&dir, "bad.gltf", &lit_file(with_extras(extras)));
+        let text = load_gltf_scene(&path, None).unwrap_err().to_string();
+        assert!(
+            text.contains("bad.gltf") && text.contains("camera 0") && text.contains(expected),
+            "{text}"
+        );
+    }
+}

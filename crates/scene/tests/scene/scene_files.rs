@@ -367,7 +367,7 @@ fn procedural_shapes_take_their_parameters_and_defaults() {
 fn name_and_shadow_settings_are_passed_on() {
     let scene = load(&format!(
         "name = \"mine\"\n{BOX}[shadow]\ntechnique = \"lispsm\"\nparameter = \"n_opt\"\n\
-         resolution = 2048\nsplits = 4\nsplit_scheme = \"practical\"\nbias = \"slope\"\n\
+         resolution = 2048\npartitions = 4\nsplit_scheme = \"practical\"\nbias = \"slope\"\n\
          filter = \"pcf\"\nlambda = 0.25\nn = 3\nfocus = \"view\"\n\
          optimal_readback = \"35x35\"\noptimal_initial = 512\noptimal_iterations = 2\n\
          optimal_border = 0.1\n"
@@ -382,7 +382,7 @@ fn name_and_shadow_settings_are_passed_on() {
             n: Some(3.0),
             focus: Some("view".into()),
             resolution: Some(2048),
-            splits: Some(4),
+            partitions: Some(4),
             split_scheme: Some("practical".into()),
             bias: Some("slope".into()),
             filter: Some("pcf".into()),
@@ -406,7 +406,7 @@ fn name_and_shadow_settings_are_passed_on() {
     assert_eq!(
         partial.shadow,
         ShadowSettings {
-            splits: Some(3),
+            partitions: Some(3),
             ..ShadowSettings::default()
         }
     );
