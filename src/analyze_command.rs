@@ -12,7 +12,7 @@ use crate::args::{AnalyzeArgs, MemoryArgs, SceneArg, StudyView, SweepArgs, Tempo
 use crate::error::CliError;
 use crate::exports::{self, Exporter};
 use crate::memory::{self, Workload};
-use crate::output::{OutputDir, TEXT_BOUND, png_bound, print_line, slug};
+use crate::output::{OutputDir, TEXT_BOUND, annotated_png_bound, png_bound, print_line, slug};
 use crate::progress;
 use crate::shadow_settings::{load_scene_argument, optimizer_flags, technique_list};
 
@@ -62,15 +62,10 @@ pub(crate) fn analyze(args: &AnalyzeArgs) -> Result<(), CliError> {
         .max()
         .unwrap_or(0);
     let maps = options.partitions.iter().copied().max().unwrap_or(1) as u64;
-    // Per technique at the picture resolution, three raw pictures and three annotated ones (the
-    // raw pixels framed, room for a long title, up to 320 rows of title and key; RGBA), and the
-    // exports.
+    // Per technique at the picture resolution, three raw pictures and three annotated ones, and
+    // the exports.
     let (width, height) = (scene.camera.width, scene.camera.height);
-    let annotated = png_bound(
-        (width + 2 * shadowlab_plot::MARGIN).max(1200),
-        height + 320,
-        4,
-    );
+    let annotated = annotated_png_bound(width, height);
     let export_bound = if args.export {
         let combinations = study::settings(&options).len() as u64;
         exports::bound(&scene, combinations, maps, largest_map)
@@ -121,7 +116,7 @@ pub(crate) fn analyze(args: &AnalyzeArgs) -> Result<(), CliError> {
             let eye = &observed.eye.image;
             if !frame_exported {
                 exporter.add_scene(&mut set, &scene)?;
-                exporter.add_frame(&mut set, eye, observed.truth)?;
+                exporter.add_frame(&mut set, "", eye, observed.truth)?;
                 frame_exported = true;
             }
             let combination = exports::combination_dir(observed.setting);
@@ -149,7 +144,7 @@ pub(crate) fn analyze(args: &AnalyzeArgs) -> Result<(), CliError> {
     let mut report =
         report::report(&study).map_err(|e| CliError::Failure(anyhow::anyhow!("{e}")))?;
     if let Some(exporter) = &exporter {
-        report.json = with_exports(&report.json, exporter.index())?;
+        report.json = exports::with_exports(&report.json, exporter.index())?;
     }
     let files = report.files();
     for (name, bytes) in &files {
@@ -191,15 +186,6 @@ impl From<CliError> for Stop {
     fn from(error: CliError) -> Self {
         Self::Output(error)
     }
-}
-
-/// `results.json` with the exports' index added as `"exports"`.
-fn with_exports(json: &str, index: serde_json::Value) -> Result<String, CliError> {
-    let mut value: serde_json::Value = serde_json::from_str(json)
-        .map_err(|e| CliError::Failure(anyhow::anyhow!("results.json: {e}")))?;
-    value["exports"] = index;
-    serde_json::to_string_pretty(&value)
-        .map_err(|e| CliError::Failure(anyhow::anyhow!("results.json: {e}")))
 }
 
 /// The scene of `sweep-angle` and `temporal`, at the eye image size asked for.

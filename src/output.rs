@@ -45,6 +45,17 @@ pub(crate) fn png_bound(width: u32, height: u32, bytes_per_pixel: u64) -> u64 {
     raw + raw / 1000 + 4096
 }
 
+/// A bound on the bytes of an annotated picture ([`shadowlab_plot::render_picture`], RGBA) of an
+/// image of `width` × `height` pixels: the image framed by margins, at least 1200 pixels wide (room
+/// for a long title), and up to 320 rows of title and key.
+pub(crate) fn annotated_png_bound(width: u32, height: u32) -> u64 {
+    png_bound(
+        (width + 2 * shadowlab_plot::MARGIN).max(1200),
+        height + 320,
+        4,
+    )
+}
+
 /// An output set's manifest: every file (by its path inside the set, `/`-separated), its size in
 /// bytes and its SHA-256 in hex; the tool's version and the command that wrote it.
 #[derive(Debug, Serialize, Deserialize)]

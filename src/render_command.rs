@@ -2,6 +2,7 @@
 
 use std::path::PathBuf;
 
+use shadowlab_analysis::report::filter_label;
 use shadowlab_analysis::study::{Setting, footprints_of};
 use shadowlab_analysis::truth::{exact_truth, scene_bvh};
 use shadowlab_raster::image_out;
@@ -12,7 +13,7 @@ use crate::args::RenderArgs;
 use crate::error::CliError;
 use crate::exports::{self, Exporter};
 use crate::memory::{self, Workload};
-use crate::output::{OutputDir, png_bound, print_line, slug};
+use crate::output::{OutputDir, annotated_png_bound, png_bound, print_line, slug};
 use crate::progress;
 use crate::shadow_settings::resolve;
 
@@ -33,7 +34,6 @@ pub(crate) fn run(args: &RenderArgs) -> Result<(), CliError> {
             "render",
         ))
     });
-    // The eye view, and per map its depth (16-bit) and its light view (RGB).
     let maps = u64::try_from(resolved.plan.partitions).unwrap_or(u64::MAX);
     let setting = Setting {
         technique,
@@ -46,8 +46,11 @@ pub(crate) fn run(args: &RenderArgs) -> Result<(), CliError> {
     } else {
         0
     };
-    let estimate = png_bound(scene.camera.width, scene.camera.height, 3)
-        + maps.saturating_mul(png_bound(resolved.resolution, resolved.resolution, 2 + 3))
+    // Raw and annotated: the eye view, and per map its depth (16-bit) and its light view.
+    let (width, height, side) = (scene.camera.width, scene.camera.height, resolved.resolution);
+    let estimate = png_bound(width, height, 3)
+        + annotated_png_bound(width, height)
+        + maps.saturating_mul(png_bound(side, side, 2 + 3) + annotated_png_bound(side, side))
         + export_bound;
     let out = OutputDir::check(target, "--out", estimate)?;
     memory::check(
@@ -69,15 +72,19 @@ pub(crate) fn run(args: &RenderArgs) -> Result<(), CliError> {
         frame.map_err(|e| CliError::Input(format!("{} with {technique}: {e}", scene.name)))?;
     let image_failure =
         |e: shadowlab_raster::RasterError| CliError::Failure(anyhow::anyhow!("{e}"));
-    let mut files = vec![(
-        "eye.png".to_string(),
-        image_out::rgb_png(
-            &view::shade(&frame, scene),
-            scene.camera.width,
-            scene.camera.height,
-        )
-        .map_err(image_failure)?,
-    )];
+    let picture_failure = |e: shadowlab_plot::PlotError| CliError::Failure(anyhow::anyhow!("{e}"));
+    let settings = settings_line(scene, &options);
+    let mut files = vec![
+        (
+            "eye.png".to_string(),
+            image_out::rgb_png(&view::shade(&frame, scene), width, height)
+                .map_err(image_failure)?,
+        ),
+        (
+            "pictures/eye.png".to_string(),
+            view::eye_picture(&frame, scene, &settings).map_err(picture_failure)?,
+        ),
+    ];
     let eye = scene_eye(scene);
     let single = frame.lights.len() == 1 && frame.lights[0].maps.len() == 1;
     for (l, shadow) in frame.lights.iter().enumerate() {
@@ -93,6 +100,11 @@ pub(crate) fn run(args: &RenderArgs) -> Result<(), CliError> {
             } else {
                 format!("lightview-{suffix}.png")
             };
+            files.push((
+                format!("pictures/{name}"),
+                view::light_view_picture(map, &eye, &scene.name, &settings)
+                    .map_err(picture_failure)?,
+            ));
             files.push((
                 name,
                 image_out::rgb_png(&view::light_view(map, &eye), side, side)
@@ -163,6 +175,24 @@ pub(crate) fn run(args: &RenderArgs) -> Result<(), CliError> {
     Ok(())
 }
 
+/// The settings a frame was made with, as one line under its pictures' titles.
+fn settings_line(scene: &Scene, options: &FrameOptions) -> String {
+    let partitions = match options.plan.partitions {
+        1 => "1 map per light".to_owned(),
+        k => format!("{k} maps per light ({} splits)", options.plan.splits),
+    };
+    format!(
+        "{}² shadow map, {partitions}, filter {}, bias {}, format {}, focus {}; {}×{} eye image",
+        options.resolution,
+        filter_label(&options.lookup.filter),
+        options.lookup.bias,
+        options.format.key_name(),
+        options.plan.focus.key(),
+        scene.camera.width,
+        scene.camera.height
+    )
+}
+
 /// The frame's per-pixel results (`--export`): eye pass, exact truth, lookups, footprints, maps.
 fn export(
     set: &mut crate::output::OutputSet<'_>,
@@ -177,7 +207,7 @@ fn export(
     let footprints = footprints_of(scene, &frame.eye, &frame.lights);
     let mut exporter = Exporter::new();
     exporter.add_scene(set, scene)?;
-    exporter.add_frame(set, &frame.eye, &truth)?;
+    exporter.add_frame(set, "", &frame.eye, &truth)?;
     exporter.add_setup(set, combination, scene, options)?;
     exporter.add_shadows(
         set,

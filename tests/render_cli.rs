@@ -44,13 +44,32 @@ fn render_writes_the_pictures_and_repeats_exactly() {
             "{text}"
         );
     }
-    for file in ["eye.png", "lightview.png", "shadowmap-light0-part0.png"] {
+    for file in [
+        "eye.png",
+        "lightview.png",
+        "shadowmap-light0-part0.png",
+        "pictures/eye.png",
+        "pictures/lightview.png",
+    ] {
         let (a, b) = (
             fs::read(first.path().join(file)).unwrap(),
             fs::read(second.path().join(file)).unwrap(),
         );
         assert!(a.starts_with(b"\x89PNG"), "{file} is not a PNG");
         assert_eq!(a, b, "{file} differs between runs");
+    }
+    // The annotated pictures frame the raw ones: wider and taller (title, settings, legend).
+    let size = |file: &str| {
+        let bytes = fs::read(first.path().join(file)).unwrap();
+        let word = |at: usize| u32::from_be_bytes(bytes[at..at + 4].try_into().unwrap());
+        (word(16), word(20))
+    };
+    for (raw, annotated) in [
+        ("eye.png", "pictures/eye.png"),
+        ("lightview.png", "pictures/lightview.png"),
+    ] {
+        let ((w, h), (aw, ah)) = (size(raw), size(annotated));
+        assert!(aw > w && ah > h, "{annotated}: {aw}×{ah} around {w}×{h}");
     }
 }
 

@@ -371,3 +371,16 @@ impl Splits {
         }
     }
 }
+
+/// The form [`Splits::parse`] reads: `uniform`, `logarithmic`, `practical:WEIGHT`,
+/// `adaptive:DELTA` (shortest round-trip numbers).
+impl std::fmt::Display for Splits {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Self::Uniform => f.write_str("uniform"),
+            Self::Logarithmic => f.write_str("logarithmic"),
+            Self::Practical { weight } => write!(f, "practical:{weight}"),
+            Self::Adaptive { delta } => write!(f, "adaptive:{delta}"),
+        }
+    }
+}

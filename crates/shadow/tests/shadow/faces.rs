@@ -187,3 +187,20 @@ fn face_partitions_render_and_compose_with_z_partitions() {
         shadowlab_shadow::scene_input(&scene, &scene.lights[0], None, FocusPolicy::Light).unwrap();
     assert!(plan(&input, FACES).is_err());
 }
+
+/// A split scheme prints as the spec it is parsed from, so settings lines name it exactly.
+#[test]
+fn split_schemes_print_as_they_are_parsed() {
+    for spec in [
+        "uniform",
+        "logarithmic",
+        "practical:0.5",
+        "practical:0.95",
+        "adaptive:2",
+        "adaptive:1.0000000000000002",
+    ] {
+        let splits = Splits::parse(spec).unwrap();
+        assert_eq!(splits.to_string(), spec);
+        assert_eq!(Splits::parse(&splits.to_string()), Ok(splits));
+    }
+}
