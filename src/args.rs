@@ -68,6 +68,10 @@ pub(crate) struct EvaluateArgs {
     /// The set-up file (JSON, docs/setup-format.md), e.g. written by `inspect --setup-json`.
     #[arg(long, value_name = "FILE")]
     pub(crate) setup: PathBuf,
+    /// Also write every per-pixel result under export/ (each frame's eye pass, exact truth,
+    /// lookups, classes, footprints and maps; the scene as glTF and OBJ), docs/outputs.md.
+    #[arg(long)]
+    pub(crate) export: bool,
     #[command(flatten)]
     pub(crate) memory: MemoryArgs,
     /// Directory to write into. Default: out/evaluate/SCENE.

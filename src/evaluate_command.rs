@@ -2,37 +2,39 @@
 
 use std::path::PathBuf;
 
-use shadowlab_analysis::evaluate::evaluate;
+use shadowlab_analysis::evaluate::evaluate_observed;
 use shadowlab_analysis::report::{self, technique_label};
 use shadowlab_analysis::setup_file::{SetupError, load_setup};
 use shadowlab_analysis::temporal::Stability;
 
 use crate::args::EvaluateArgs;
 use crate::error::CliError;
+use crate::exports::{self, Exporter};
 use crate::memory::{self, Workload};
-use crate::output::{OutputDir, TEXT_BOUND, png_bound, print_line, slug};
+use crate::output::{OutputDir, TEXT_BOUND, annotated_png_bound, png_bound, print_line, slug};
 use crate::progress;
 use crate::shadow_settings::load_scene_argument;
 
-/// A set-up file's error: an input error naming the file and the field (exit 2), unless the
-/// operating system failed to read a file that is there (exit 1), as for scene files.
-fn setup_error(error: &SetupError) -> CliError {
-    CliError::from_input_file(error)
-}
+/// The report's machine-readable results, which list the exports.
+const RESULTS_JSON: &str = "results.json";
 
 pub(crate) fn run(args: &EvaluateArgs) -> Result<(), CliError> {
     let scene = load_scene_argument(&args.scene)?;
-    let setup = load_setup(&args.setup).map_err(|e| setup_error(&e))?;
+    let setup = load_setup(&args.setup)?;
     let frames = setup.frames.len() as u64;
-    // Per frame the report and its pictures: three raw and three annotated.
+    // Per frame the report and its pictures (three raw and three annotated), and the exports.
     let (width, height) = (scene.camera.width, scene.camera.height);
-    let annotated = png_bound(
-        (width + 2 * shadowlab_plot::MARGIN).max(1200),
-        height + 320,
-        4,
-    );
-    let estimate =
-        frames.saturating_mul(TEXT_BOUND + 3 * (png_bound(width, height, 3) + annotated));
+    let maps = setup.most_maps() as u64;
+    let export_bound = if args.export {
+        exports::bound(&scene, frames, maps, setup.largest_map())
+    } else {
+        0
+    };
+    let estimate = frames
+        .saturating_mul(
+            TEXT_BOUND + 3 * (png_bound(width, height, 3) + annotated_png_bound(width, height)),
+        )
+        .saturating_add(export_bound);
     let target = args
         .out
         .clone()
@@ -43,44 +45,70 @@ pub(crate) fn run(args: &EvaluateArgs) -> Result<(), CliError> {
             &scene,
             true,
             setup.largest_map(),
-            setup.most_maps() as u64,
+            maps,
             "camera.image",
             "the set-up's map_size",
-        ),
+        )
+        .exporting(args.export),
         args.memory.memory_budget,
     )?;
     let mut set = out.begin("evaluate")?;
-    let mut written: Result<(), CliError> = Ok(());
+    let mut exporter = args.export.then(Exporter::new);
     let mut first_report = None;
+    // Each frame's results.json, held back while exporting.
+    let mut results = Vec::new();
     let bar = progress::bar("evaluate");
     bar.set_length(frames);
-    let stability = evaluate(&scene, &setup, true, |k, study| {
-        bar.set_position(k as u64 + 1);
-        if written.is_err() {
-            return;
-        }
+    let stability = evaluate_observed(&scene, &setup, true, |study, frame| {
+        bar.set_position(frame.index as u64 + 1);
         let prefix = if frames > 1 {
-            format!("frame-{k:04}/")
+            format!("frame-{:04}/", frame.index)
         } else {
             String::new()
         };
-        written = report::report(&study)
-            .map_err(|e| CliError::Failure(anyhow::anyhow!("{e}")))
-            .and_then(|report| {
-                for (name, bytes) in report.files() {
-                    set.add(&format!("{prefix}{name}"), &bytes)?;
-                }
-                Ok(())
-            });
-        if k == 0 {
+        let report =
+            report::report(&study).map_err(|e| CliError::Failure(anyhow::anyhow!("{e}")))?;
+        for (name, bytes) in report.files() {
+            // With exports, results.json is written last, listing them all.
+            if exporter.is_some() && name == RESULTS_JSON {
+                results.push((format!("{prefix}{name}"), bytes));
+            } else {
+                set.add(&format!("{prefix}{name}"), &bytes)?;
+            }
+        }
+        if let Some(exporter) = exporter.as_mut() {
+            if frame.index == 0 {
+                exporter.add_scene(&mut set, &scene)?;
+            }
+            exporter.add_frame(&mut set, &prefix, frame.eye, &study.truth)?;
+            let combination = exports::combination_dir(&study.measurements[0].setting);
+            exporter.add_shadows(
+                &mut set,
+                &format!("{prefix}{combination}"),
+                (frame.eye, &study.truth),
+                (&frame.shadows.lights, &frame.shadows.lit),
+                frame.footprints,
+            )?;
+        }
+        if frame.index == 0 {
             first_report = study.measurements.into_iter().next();
         }
+        Ok::<(), CliError>(())
     });
     bar.finish_and_clear();
-    let stability = stability.map_err(|e| setup_error(&e))?;
-    written?;
+    let stability = stability?;
     if let Some(stability) = &stability {
         set.add("shimmer.csv", shimmer_csv(stability).as_bytes())?;
+    }
+    if let Some(exporter) = exporter {
+        for (name, json) in &results {
+            let json = String::from_utf8_lossy(json);
+            set.add(
+                name,
+                exports::with_exports(&json, exporter.index())?.as_bytes(),
+            )?;
+        }
+        exporter.finish(&mut set)?;
     }
     set.finish()?;
     if let Some(m) = first_report
@@ -108,6 +136,14 @@ pub(crate) fn run(args: &EvaluateArgs) -> Result<(), CliError> {
         ))?;
     }
     print_line(&out.path().display().to_string())
+}
+
+impl From<SetupError> for CliError {
+    /// A set-up file's error: an input error naming the file and the field (exit 2), unless the
+    /// operating system failed to read a file that is there (exit 1), as for scene files.
+    fn from(error: SetupError) -> Self {
+        Self::from_input_file(&error)
+    }
 }
 
 /// The shimmering pixels between consecutive frames (first light), one row per pair.

@@ -1,4 +1,4 @@
-//! `--export` (render, analyze): every per-pixel result beside the pictures, under `export/` in
+//! `--export` (render, analyze, evaluate): every per-pixel result beside the pictures, under `export/` in
 //! the output set ([`shadowlab_analysis::export`] says what each file holds), with its index
 //! `export/index.json`.
 
@@ -71,15 +71,20 @@ impl Exporter {
         Ok(())
     }
 
-    /// The eye pass and the exact truth.
+    /// The eye pass and the exact truth, in `dir` (`""`, or a frame's directory ending in `/`).
     pub(crate) fn add_frame(
         &mut self,
         set: &mut OutputSet<'_>,
+        dir: &str,
         eye: &EyeImage,
         truth: &Truth,
     ) -> Result<(), CliError> {
-        self.add(set, eye_files(eye).map_err(failure)?)?;
-        self.add(set, truth_files(truth, eye).map_err(failure)?)
+        let mut files = eye_files(eye).map_err(failure)?;
+        files.extend(truth_files(truth, eye).map_err(failure)?);
+        for file in &mut files {
+            file.name.insert_str(0, dir);
+        }
+        self.add(set, files)
     }
 
     /// The assembled scene — world-space geometry, camera and lights — as `scene.glb` (f32, as
@@ -169,6 +174,15 @@ impl Exporter {
         })?;
         set.add(&format!("{EXPORT_DIR}/index.json"), &bytes)
     }
+}
+
+/// `results.json` with the exports' index added as `"exports"`.
+pub(crate) fn with_exports(json: &str, index: serde_json::Value) -> Result<String, CliError> {
+    let mut value: serde_json::Value = serde_json::from_str(json)
+        .map_err(|e| CliError::Failure(anyhow::anyhow!("results.json: {e}")))?;
+    value["exports"] = index;
+    serde_json::to_string_pretty(&value)
+        .map_err(|e| CliError::Failure(anyhow::anyhow!("results.json: {e}")))
 }
 
 /// An export that cannot be encoded is an internal failure (the sizes come from the library).

@@ -336,3 +336,325 @@ fn evaluate_of_a_written_set_up_is_analyze() {
         stderr(&output)
     );
 }
+
+/// The small scene's camera and lights, and its geometry from `meshes` (TOML mesh entries).
+fn scene_with_meshes(dir: &Path, name: &str, meshes: &str) -> String {
+    let path = dir.join(name);
+    fs::write(
+        &path,
+        format!(
+            "[camera]\nposition = [0.0, 3.0, 12.0]\ntarget = [0.0, 0.0, -10.0]\n\
+             image = [96, 64]\nfar = 60.0\n\
+             [[light]]\ndirection = [-0.6, -1.0, -0.2]\n\
+             [[light]]\nkind = \"spot\"\nposition = [4.0, 8.0, 4.0]\n\
+             target = [0.0, 0.0, 0.0]\ncone = 50.0\n{meshes}"
+        ),
+    )
+    .unwrap();
+    path.display().to_string()
+}
+
+/// Runs `shadowlab` with `args`, asserting success.
+fn run(args: &[&str]) {
+    let output = shadowlab(args, None);
+    assert!(output.status.success(), "{args:?}: {}", stderr(&output));
+}
+
+/// The exported scene and set-up reproduce the frame: a scene made of the exported `scene.obj`
+/// (every f64 of the world-space geometry) with the set-up's matrices renders every map bit for
+/// bit as the analysis rendered it, through shadowlab's own loaders (`evaluate --export`); so
+/// does `scene.glb` where the geometry is exact in f32, as glTF stores it.
+#[test]
+fn exported_scenes_and_set_ups_render_the_exported_maps_bit_for_bit() {
+    let dir = tempfile::tempdir().unwrap();
+    // A box turned by 30°: its corners are not f32 numbers.
+    let original = scene_with_meshes(
+        dir.path(),
+        "turned.toml",
+        "[[mesh]]\nshape = \"plane\"\nsize = [60.0, 60.0]\n\
+         [[mesh]]\nshape = \"box\"\nsize = [2.0, 2.0, 2.0]\nrotate = [0.0, 30.0, 0.0]\n\
+         translate = [0.0, 1.0, 0.0]\n",
+    );
+    let analyzed = dir.path().join("analyze");
+    run(&[
+        "analyze",
+        &original,
+        "--techniques",
+        "lispsm,psm",
+        "--resolutions",
+        "128",
+        "--partitions",
+        "2",
+        "--timing-runs",
+        "1",
+        "--export",
+        "--out",
+        analyzed.to_str().unwrap(),
+    ]);
+    let export = analyzed.join("export");
+    let rebuilt = scene_with_meshes(
+        dir.path(),
+        "rebuilt.toml",
+        &format!(
+            "[[mesh]]\nobj = {:?}\n",
+            export.join("scene.obj").display().to_string()
+        ),
+    );
+    for technique in ["lispsm", "psm"] {
+        let combination = format!("{technique}-128-2p-nearest");
+        let evaluated = dir.path().join(format!("evaluate-{technique}"));
+        run(&[
+            "evaluate",
+            &rebuilt,
+            "--setup",
+            export
+                .join(&combination)
+                .join("setup.json")
+                .to_str()
+                .unwrap(),
+            "--export",
+            "--out",
+            evaluated.to_str().unwrap(),
+        ]);
+        for light in 0..2 {
+            for part in 0..2 {
+                let map = format!("{combination}/map-light{light}-part{part}.npy");
+                let again = read_npy(&evaluated.join("export").join(&map));
+                let first = read_npy(&export.join(&map));
+                assert_eq!(again.shape, [128, 128]);
+                assert!(again.data == first.data, "{map} differs");
+            }
+        }
+        // evaluate's export lists its own files in its results.json and index, all written.
+        let results: serde_json::Value =
+            serde_json::from_str(&fs::read_to_string(evaluated.join("results.json")).unwrap())
+                .unwrap();
+        let files = results["exports"].as_array().unwrap();
+        assert!(files.len() > 10, "{files:?}");
+        for entry in files {
+            let file = entry["file"].as_str().unwrap();
+            assert!(evaluated.join(file).is_file(), "{file} listed, not written");
+        }
+    }
+
+    // scene.glb holds f32 positions: exact for a scene whose coordinates are f32 numbers.
+    let exact = scene_file(dir.path());
+    let analyzed = dir.path().join("analyze-exact");
+    run(&[
+        "analyze",
+        &exact,
+        "--techniques",
+        "lispsm",
+        "--resolutions",
+        "128",
+        "--partitions",
+        "2",
+        "--timing-runs",
+        "1",
+        "--export",
+        "--out",
+        analyzed.to_str().unwrap(),
+    ]);
+    let export = analyzed.join("export");
+    let evaluated = dir.path().join("evaluate-glb");
+    run(&[
+        "evaluate",
+        export.join("scene.glb").to_str().unwrap(),
+        "--setup",
+        export
+            .join("lispsm-128-2p-nearest/setup.json")
+            .to_str()
+            .unwrap(),
+        "--export",
+        "--out",
+        evaluated.to_str().unwrap(),
+    ]);
+    for light in 0..2 {
+        for part in 0..2 {
+            let map = format!("lispsm-128-2p-nearest/map-light{light}-part{part}.npy");
+            assert!(
+                read_npy(&evaluated.join("export").join(&map)).data
+                    == read_npy(&export.join(&map)).data,
+                "{map} differs"
+            );
+        }
+    }
+}
+
+/// An engine's maps, given as depth images in the set-up file, are judged through the command
+/// line as the library judges them: the analysis's own maps (NPY, EXR) give its counts, and maps
+/// pushed 0.02 toward the light, ten times the bias, shadow lit surfaces (acne).
+#[test]
+fn evaluate_judges_given_maps() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = scene_file(dir.path());
+    let analyzed = dir.path().join("analyze");
+    run(&[
+        "analyze",
+        &scene,
+        "--techniques",
+        "uniform",
+        "--resolutions",
+        "128",
+        "--partitions",
+        "1",
+        "--bias",
+        "constant:0.002",
+        "--timing-runs",
+        "1",
+        "--export",
+        "--out",
+        analyzed.to_str().unwrap(),
+    ]);
+    let combination = analyzed.join("export/uniform-128-1p-nearest");
+    let results = |dir: &Path| -> serde_json::Value {
+        serde_json::from_str(&fs::read_to_string(dir.join("results.json")).unwrap()).unwrap()
+    };
+    let counts = |value: &serde_json::Value| {
+        let m = &value["measurements"][0];
+        (
+            m["falsely_lit"].as_u64().unwrap(),
+            m["falsely_shadowed"].as_u64().unwrap(),
+        )
+    };
+    let rendered = counts(&results(&analyzed));
+    let setup: serde_json::Value =
+        serde_json::from_str(&fs::read_to_string(combination.join("setup.json")).unwrap()).unwrap();
+    // The set-up with each partition's depth image named (relative to the set-up's directory).
+    let with_images = |name: &str, image: &dyn Fn(usize) -> String| {
+        let mut given = setup.clone();
+        for (light, partitions) in given["frames"][0]["lights"]
+            .as_array_mut()
+            .unwrap()
+            .iter_mut()
+            .enumerate()
+        {
+            for partition in partitions["partitions"].as_array_mut().unwrap() {
+                partition["depth_image"] = image(light).into();
+            }
+        }
+        let path = combination.join(name);
+        fs::write(&path, serde_json::to_string(&given).unwrap()).unwrap();
+        path
+    };
+    let evaluate = |setup: &Path, out: &str| {
+        let out = dir.path().join(out);
+        run(&[
+            "evaluate",
+            &scene,
+            "--setup",
+            setup.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        counts(&results(&out))
+    };
+    for extension in ["npy", "exr"] {
+        let setup = with_images(&format!("given-{extension}.json"), &|light| {
+            format!("map-light{light}-part0.{extension}")
+        });
+        assert_eq!(evaluate(&setup, extension), rendered, "{extension}");
+    }
+    // Every depth 0.02 nearer the light (clamped at 0): a lit receiver now lies behind its own
+    // surface's stored depth by more than the bias.
+    for light in 0..2 {
+        let map = read_npy(&combination.join(format!("map-light{light}-part0.npy")));
+        let shifted: Vec<u8> = map
+            .f32s()
+            .iter()
+            .flat_map(|z| (z - 0.02).max(0.0).to_le_bytes())
+            .collect();
+        let mut bytes = fs::read(combination.join(format!("map-light{light}-part0.npy"))).unwrap();
+        let header = bytes.len() - shifted.len();
+        bytes.truncate(header);
+        bytes.extend(shifted);
+        fs::write(combination.join(format!("shifted-{light}.npy")), bytes).unwrap();
+    }
+    let setup = with_images("given-shifted.json", &|light| {
+        format!("shifted-{light}.npy")
+    });
+    let shifted = evaluate(&setup, "shifted");
+    assert!(
+        shifted.1 > rendered.1 + 100,
+        "{shifted:?} against {rendered:?}"
+    );
+}
+
+/// The Python interpreter for docs/examples: `SHADOWLAB_PYTHON`, else Debian's `/usr/bin/python3`,
+/// if it imports numpy and PyOpenGL. Where none does, the test says so and passes, unless
+/// `SHADOWLAB_REQUIRE_GL=1` (set by `.ci/run`, which installs Debian's python3-opengl,
+/// python3-numpy and Mesa): then it fails.
+fn python_with_gl() -> Option<String> {
+    let python = std::env::var("SHADOWLAB_PYTHON").unwrap_or_else(|_| "/usr/bin/python3".into());
+    let works = std::process::Command::new(&python)
+        .args(["-c", "import numpy, OpenGL"])
+        .output()
+        .is_ok_and(|o| o.status.success());
+    if works {
+        return Some(python);
+    }
+    let required = std::env::var("SHADOWLAB_REQUIRE_GL").is_ok_and(|v| v == "1");
+    assert!(
+        !required,
+        "SHADOWLAB_REQUIRE_GL=1 but {python} cannot import numpy and OpenGL (apt-get install \
+         python3-numpy python3-opengl libegl-mesa0 libgl1-mesa-dri, or set SHADOWLAB_PYTHON)"
+    );
+    use std::io::Write as _;
+    let _ = writeln!(
+        std::io::stderr(),
+        "\n*** SKIPPED another_renderer_reproduces_the_exported_maps: {python} cannot import numpy \
+         and OpenGL, so docs/examples/reproduce_maps_gl.py was NOT run (SHADOWLAB_REQUIRE_GL=1 \
+         makes this a failure) ***\n"
+    );
+    None
+}
+
+/// docs/reproducing.md's claim, run: OpenGL (Mesa's llvmpipe, through
+/// docs/examples/reproduce_maps_gl.py) draws every exported map again from `scene.obj` and the
+/// set-ups, in agreement within the script's stated tolerances — on a scene with a directional and
+/// a spot light, for matrices of three techniques, one and two partitions.
+#[test]
+fn another_renderer_reproduces_the_exported_maps() {
+    let Some(python) = python_with_gl() else {
+        return;
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let scene = scene_with_meshes(
+        dir.path(),
+        "turned.toml",
+        "[[mesh]]\nshape = \"plane\"\nsize = [60.0, 60.0]\n\
+         [[mesh]]\nshape = \"box\"\nsize = [2.0, 2.0, 2.0]\nrotate = [0.0, 30.0, 0.0]\n\
+         translate = [0.0, 1.0, 0.0]\n",
+    );
+    let analyzed = dir.path().join("analyze");
+    run(&[
+        "analyze",
+        &scene,
+        "--techniques",
+        "uniform,lispsm,psm",
+        "--resolutions",
+        "256",
+        "--partitions",
+        "1,2",
+        "--timing-runs",
+        "1",
+        "--export",
+        "--out",
+        analyzed.to_str().unwrap(),
+    ]);
+    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/examples/reproduce_maps_gl.py");
+    let output = std::process::Command::new(python)
+        .arg(script)
+        .arg(analyzed.join("export"))
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&output.stdout);
+    assert!(
+        output.status.success(),
+        "{text}\n{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    // 3 techniques × (1 + 2 partitions) × 2 lights maps, each compared.
+    assert_eq!(text.matches(": ok").count(), 18, "{text}");
+    assert!(text.contains("all maps agree"), "{text}");
+}

@@ -17,14 +17,15 @@
 use std::time::Instant;
 
 use shadowlab_hull::NdcDepth;
-use shadowlab_raster::NO_TRIANGLE;
 use shadowlab_raster::image_in::{depth_from_exr, depth_from_npy, depth_from_png16};
+use shadowlab_raster::{EyeImage, NO_TRIANGLE};
 use shadowlab_scene::{Camera, Scene, SceneLight};
 use shadowlab_shadow::{
     Bias, Eye, Filter, GivenDepths, LightMaps, LightSetup, LightSource, MapOptions, MapSource,
-    Partition, PartitionMap, ShadowError, ShadowMapping, eye_image, shadows_of,
+    Partition, PartitionMap, ShadowError, ShadowMapping, Shadows, eye_image, shadows_of,
 };
 
+use crate::aliasing::Footprint;
 use crate::classify::LIT_THRESHOLD;
 use crate::setup_file::{
     DEPTH_IMAGE_SLACK_BYTES, DepthImage, ImageKind, Setup, SetupError, SetupPartition, read_bounded,
@@ -59,13 +60,45 @@ pub fn evaluate(
     pictures: bool,
     mut frame_done: impl FnMut(usize, Study),
 ) -> Result<Option<Stability>, SetupError> {
+    evaluate_observed(scene, setup, pictures, |study, frame| {
+        frame_done(frame.index, study);
+        Ok::<(), SetupError>(())
+    })
+}
+
+/// One evaluated frame's per-pixel results, as [`evaluate_observed`] shows them before it lets
+/// them go (the exact truth is the study's).
+#[derive(Clone, Copy, Debug)]
+pub struct EvaluatedFrame<'a> {
+    /// The frame's index in the set-up.
+    pub index: usize,
+    /// The frame's eye pass.
+    pub eye: &'a EyeImage,
+    /// The frame's maps and lookups.
+    pub shadows: &'a Shadows,
+    /// The texel footprint per pixel (first light).
+    pub footprints: &'a [Option<Footprint>],
+}
+
+/// [`evaluate`], handing each frame's study to `observe` with the frame's per-pixel results (e.g.
+/// to write them out, [`crate::export`]) before they are dropped; an error from `observe` ends the
+/// evaluation.
+///
+/// # Errors
+/// As [`evaluate`], and `observe`'s.
+pub fn evaluate_observed<E: From<SetupError>>(
+    scene: &Scene,
+    setup: &Setup,
+    pictures: bool,
+    mut observe: impl FnMut(Study, &EvaluatedFrame<'_>) -> Result<(), E>,
+) -> Result<Option<Stability>, E> {
     let problem = |field: String, problem: String| SetupError::Field {
         path: setup.path.clone(),
         field,
         problem,
     };
     let start = Instant::now();
-    let bvh = scene_bvh(scene)?;
+    let bvh = scene_bvh(scene).map_err(SetupError::from)?;
     let mut hierarchy_time = start.elapsed();
     let mut moved = scene.clone();
     let mut first_size = None;
@@ -82,7 +115,8 @@ pub fn evaluate(
                     frame.lights.len(),
                     scene.lights.len()
                 ),
-            ));
+            )
+            .into());
         }
         let clip_from_world = match &frame.camera {
             Some(camera) => {
@@ -113,14 +147,15 @@ pub fn evaluate(
                          pixels of consecutive frames",
                         size.0, size.1, first.0, first.1
                     ),
-                ));
+                )
+                .into());
             }
             Some(_) => {}
         }
 
         let start = Instant::now();
-        let eye = eye_image(&moved, &clip_from_world)?;
-        let truth = exact_truth(&moved, &eye, &bvh)?;
+        let eye = eye_image(&moved, &clip_from_world).map_err(SetupError::from)?;
+        let truth = exact_truth(&moved, &eye, &bvh).map_err(SetupError::from)?;
         let truth_time = start.elapsed() + std::mem::take(&mut hierarchy_time);
 
         let start = Instant::now();
@@ -139,7 +174,7 @@ pub fn evaluate(
             })
             .collect::<Result<Vec<_>, SetupError>>()?;
         let reading = start.elapsed();
-        let mut shadows = shadows_of(&moved, &eye, lights, Some(&bvh))?;
+        let mut shadows = shadows_of(&moved, &eye, lights, Some(&bvh)).map_err(SetupError::from)?;
         shadows.timings.shadow_pass += reading;
 
         let per_pixel = frame_footprints(&moved, &eye, &shadows);
@@ -177,31 +212,37 @@ pub fn evaluate(
         previous = Some((states, truth_states));
 
         let visible = eye.triangle.iter().filter(|t| **t != NO_TRIANGLE).count();
-        frame_done(
-            k,
-            Study {
-                scene: scene.name.clone(),
-                timing_runs: 1,
-                bias: frame
-                    .lights
-                    .first()
-                    .and_then(|partitions| partitions.first())
-                    .map_or(Bias::DEFAULT, |p| p.lookup.bias),
-                focus: None,
-                width: eye.width,
-                height: eye.height,
-                visible: visible as u64,
-                truth_time,
-                map_truth: None,
-                measurements: vec![Measurement {
-                    setting,
-                    outcome: Ok(measured),
-                }],
-                truth,
-                pictures: frame_pictures,
-                view_axis: Vec::new(),
+        let study = Study {
+            scene: scene.name.clone(),
+            timing_runs: 1,
+            bias: frame
+                .lights
+                .first()
+                .and_then(|partitions| partitions.first())
+                .map_or(Bias::DEFAULT, |p| p.lookup.bias),
+            focus: None,
+            width: eye.width,
+            height: eye.height,
+            visible: visible as u64,
+            truth_time,
+            map_truth: None,
+            measurements: vec![Measurement {
+                setting,
+                outcome: Ok(measured),
+            }],
+            truth,
+            pictures: frame_pictures,
+            view_axis: Vec::new(),
+        };
+        observe(
+            study,
+            &EvaluatedFrame {
+                index: k,
+                eye: &eye,
+                shadows: &shadows,
+                footprints: &per_pixel,
             },
-        );
+        )?;
     }
     Ok((setup.frames.len() > 1).then_some(Stability {
         technique: setup.technique,
