@@ -658,3 +658,68 @@ fn another_renderer_reproduces_the_exported_maps() {
     assert_eq!(text.matches(": ok").count(), 18, "{text}");
     assert!(text.contains("all maps agree"), "{text}");
 }
+
+/// `evaluate --export` of a set-up of several frames writes each frame's eye pass, truth and
+/// combination under `export/frame-NNNN/`, beside each frame's report, and every frame's
+/// results.json lists the files, all written; two frames with the same matrices export the same
+/// maps.
+#[test]
+fn evaluate_exports_every_frame() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = scene_file(dir.path());
+    let setup = dir.path().join("setup.json");
+    run(&[
+        "inspect",
+        &scene,
+        "--technique",
+        "uniform",
+        "--resolution",
+        "64",
+        "--setup-json",
+        setup.to_str().unwrap(),
+    ]);
+    let mut value: serde_json::Value =
+        serde_json::from_str(&fs::read_to_string(&setup).unwrap()).unwrap();
+    let frame = value["frames"][0].clone();
+    value["frames"].as_array_mut().unwrap().push(frame);
+    fs::write(&setup, serde_json::to_string(&value).unwrap()).unwrap();
+    let out = dir.path().join("evaluate");
+    run(&[
+        "evaluate",
+        &scene,
+        "--setup",
+        setup.to_str().unwrap(),
+        "--export",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let export = out.join("export");
+    assert!(export.join("scene.glb").is_file() && export.join("scene.obj").is_file());
+    for k in 0..2 {
+        let frame = format!("frame-{k:04}");
+        for file in [
+            "eye.exr",
+            "eye-depth.npy",
+            "truth-light0.npy",
+            "truth-light1.npy",
+        ] {
+            assert!(export.join(&frame).join(file).is_file(), "{frame}/{file}");
+        }
+        let results: serde_json::Value = serde_json::from_str(
+            &fs::read_to_string(out.join(&frame).join("results.json")).unwrap(),
+        )
+        .unwrap();
+        for entry in results["exports"].as_array().unwrap() {
+            let file = entry["file"].as_str().unwrap();
+            assert!(out.join(file).is_file(), "{file} listed, not written");
+        }
+    }
+    let map = |k: usize| {
+        read_npy(&export.join(format!(
+            "frame-{k:04}/uniform-64-1p-nearest/map-light0-part0.npy"
+        )))
+        .data
+    };
+    assert!(map(0) == map(1));
+    assert!(out.join("shimmer.csv").is_file());
+}
