@@ -69,6 +69,7 @@ mod bounds;
 mod builtin;
 pub mod export;
 pub mod gltf_import;
+mod limits;
 mod mesh;
 mod normals;
 mod number;

@@ -585,7 +585,7 @@ pub enum GltfSkipped {
         count: usize,
     },
     /// The camera's `zfar`, brought in to the far side of the scene's bounds because `zfar /
-    /// znear` exceeds [`crate::scene_file::MAX_DEPTH_RATIO`]; nothing lies beyond the new far
+    /// znear` exceeds [`MAX_DEPTH_RATIO`](crate::scene_file::MAX_DEPTH_RATIO); nothing lies beyond the new far
     /// plane, so the image is the same.
     FarReduced {
         /// The file's `zfar`.
@@ -653,7 +653,7 @@ impl fmt::Display for GltfSkipped {
                  (MAX_DEPTH_RATIO)",
                 Shown(*zfar),
                 Shown(*far),
-                Shown(crate::scene_file::MAX_DEPTH_RATIO)
+                Shown(crate::limits::MAX_DEPTH_RATIO)
             ),
             Self::AspectRatio {
                 file,

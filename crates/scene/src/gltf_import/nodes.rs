@@ -9,8 +9,8 @@ use shadowlab_hull::ViewPose;
 
 use super::error::{GltfError, GltfObject, GltfObjectKind, GltfProblem, GltfSkipped, GltfWarning};
 use super::{GltfCamera, GltfLight, GltfLightKind};
+use crate::limits::MIN_ANGLE_DEGREES;
 use crate::normals;
-use crate::scene_file::MIN_ANGLE_DEGREES;
 
 /// A node of the scene and its world transform.
 pub(super) struct Placed {
