@@ -354,6 +354,31 @@ fn scene_with_meshes(dir: &Path, name: &str, meshes: &str) -> String {
     path.display().to_string()
 }
 
+/// The small scene's ground with a box turned by 30° on it: its corners are not f32 numbers.
+const TURNED_MESHES: &str = "[[mesh]]\nshape = \"plane\"\nsize = [60.0, 60.0]\n\
+     [[mesh]]\nshape = \"box\"\nsize = [2.0, 2.0, 2.0]\nrotate = [0.0, 30.0, 0.0]\n\
+     translate = [0.0, 1.0, 0.0]\n";
+
+/// `analyze SCENE --export` of `techniques` at one `resolution` and the listed `partitions`,
+/// timed once, into `out`.
+fn analyze_exported(scene: &str, techniques: &str, resolution: &str, partitions: &str, out: &Path) {
+    run(&[
+        "analyze",
+        scene,
+        "--techniques",
+        techniques,
+        "--resolutions",
+        resolution,
+        "--partitions",
+        partitions,
+        "--timing-runs",
+        "1",
+        "--export",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+}
+
 /// Runs `shadowlab` with `args`, asserting success.
 fn run(args: &[&str]) {
     let output = shadowlab(args, None);
@@ -367,30 +392,9 @@ fn run(args: &[&str]) {
 #[test]
 fn exported_scenes_and_set_ups_render_the_exported_maps_bit_for_bit() {
     let dir = tempfile::tempdir().unwrap();
-    // A box turned by 30°: its corners are not f32 numbers.
-    let original = scene_with_meshes(
-        dir.path(),
-        "turned.toml",
-        "[[mesh]]\nshape = \"plane\"\nsize = [60.0, 60.0]\n\
-         [[mesh]]\nshape = \"box\"\nsize = [2.0, 2.0, 2.0]\nrotate = [0.0, 30.0, 0.0]\n\
-         translate = [0.0, 1.0, 0.0]\n",
-    );
+    let original = scene_with_meshes(dir.path(), "turned.toml", TURNED_MESHES);
     let analyzed = dir.path().join("analyze");
-    run(&[
-        "analyze",
-        &original,
-        "--techniques",
-        "lispsm,psm",
-        "--resolutions",
-        "128",
-        "--partitions",
-        "2",
-        "--timing-runs",
-        "1",
-        "--export",
-        "--out",
-        analyzed.to_str().unwrap(),
-    ]);
+    analyze_exported(&original, "lispsm,psm", "128", "2", &analyzed);
     let export = analyzed.join("export");
     let rebuilt = scene_with_meshes(
         dir.path(),
@@ -440,21 +444,7 @@ fn exported_scenes_and_set_ups_render_the_exported_maps_bit_for_bit() {
     // scene.glb holds f32 positions: exact for a scene whose coordinates are f32 numbers.
     let exact = scene_file(dir.path());
     let analyzed = dir.path().join("analyze-exact");
-    run(&[
-        "analyze",
-        &exact,
-        "--techniques",
-        "lispsm",
-        "--resolutions",
-        "128",
-        "--partitions",
-        "2",
-        "--timing-runs",
-        "1",
-        "--export",
-        "--out",
-        analyzed.to_str().unwrap(),
-    ]);
+    analyze_exported(&exact, "lispsm", "128", "2", &analyzed);
     let export = analyzed.join("export");
     let evaluated = dir.path().join("evaluate-glb");
     run(&[
@@ -619,29 +609,9 @@ fn another_renderer_reproduces_the_exported_maps() {
         return;
     };
     let dir = tempfile::tempdir().unwrap();
-    let scene = scene_with_meshes(
-        dir.path(),
-        "turned.toml",
-        "[[mesh]]\nshape = \"plane\"\nsize = [60.0, 60.0]\n\
-         [[mesh]]\nshape = \"box\"\nsize = [2.0, 2.0, 2.0]\nrotate = [0.0, 30.0, 0.0]\n\
-         translate = [0.0, 1.0, 0.0]\n",
-    );
+    let scene = scene_with_meshes(dir.path(), "turned.toml", TURNED_MESHES);
     let analyzed = dir.path().join("analyze");
-    run(&[
-        "analyze",
-        &scene,
-        "--techniques",
-        "uniform,lispsm,psm",
-        "--resolutions",
-        "256",
-        "--partitions",
-        "1,2",
-        "--timing-runs",
-        "1",
-        "--export",
-        "--out",
-        analyzed.to_str().unwrap(),
-    ]);
+    analyze_exported(&scene, "uniform,lispsm,psm", "256", "1,2", &analyzed);
     let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/examples/reproduce_maps_gl.py");
     let output = std::process::Command::new(python)
         .arg(script)
