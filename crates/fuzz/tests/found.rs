@@ -240,3 +240,14 @@ fn a_vertex_with_subnormal_w_has_a_finite_window_position() {
         .expect("finite input");
     assert_eq!(stats.triangles, 0);
 }
+
+/// A triangle with clip-space w of −2.2·10³⁰⁷ and 1.06·10³⁰⁸ crossing every plane: the
+/// guard-band distances (`x + g·w`) overflowed, an intersection divided ∞ by ∞, and the NaN vertex
+/// reached the snap (debug builds: "NaN outside the guard band" in `fixed::snapped`). Found by
+/// this session's raster run after 190 s. Fixed: such vertices are scaled by 2⁻¹²⁸ before
+/// clipping (`clip.rs`, `HUGE_VERTEX`), and a clipped vertex with a NaN w is dropped like one
+/// with w below `MIN_W`.
+#[test]
+fn a_triangle_with_w_near_the_largest_f64_clips_to_finite_pieces() {
+    replay("raster/clip-nan-window", shadowlab_fuzz::raster);
+}

@@ -14,6 +14,16 @@ use crate::vertex::{MIN_W, Viewport, WindowVertex, code};
 /// The largest polygon clipping a triangle by six planes can produce.
 const MAX_POLYGON: usize = 9;
 
+/// A clip-space vertex with a component of this magnitude or more (2¹⁰⁰⁰) is scaled by
+/// [`HUGE_VERTEX_SCALE`] before clipping: a plane's distance multiplies w by a guard-band factor
+/// (below 2¹⁵) and intersections subtract distances, which overflowed to ∞ − ∞ = NaN for w near
+/// f64's largest (found by the raster fuzzer: w = 1.06·10³⁰⁸ gave NaN window positions).
+const HUGE_VERTEX: f64 = f64::from_bits((1023 + 1000) << 52);
+/// 2⁻¹²⁸: a positive power of two, so a scaled vertex is the same projective point (exactly, but
+/// for components that become subnormal, far below its largest); the same vertex is scaled alike
+/// in every triangle that shares it, so shared edges stay bit-identical.
+const HUGE_VERTEX_SCALE: f64 = f64::from_bits((1023 - 128) << 52);
+
 /// A clipped piece of a triangle, ready to rasterize.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct ClippedTriangle {
@@ -56,6 +66,13 @@ pub(crate) fn clip_triangle(
     out: &mut Vec<ClippedTriangle>,
 ) {
     let guard = viewport.guard();
+    let clip = clip.map(|c| {
+        if c.abs().max_element() >= HUGE_VERTEX {
+            c * HUGE_VERTEX_SCALE
+        } else {
+            c
+        }
+    });
     let mut polygon = [DVec4::ZERO; MAX_POLYGON];
     let mut next = [DVec4::ZERO; MAX_POLYGON];
     polygon[..3].copy_from_slice(&clip);
@@ -91,7 +108,7 @@ pub(crate) fn clip_triangle(
         }
         polygon[..count].copy_from_slice(&next[..count]);
     }
-    if polygon[..count].iter().any(|c| c.w < MIN_W) {
+    if polygon[..count].iter().any(|c| !(c.w >= MIN_W)) {
         return;
     }
     let window: Vec<WindowVertex> = polygon[..count]
@@ -109,6 +126,50 @@ pub(crate) fn clip_triangle(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The raster fuzzer's find: w near f64's largest overflowed the guard-band distances, and
+    /// an intersection became NaN (debug builds panicked in the snap). Scaled first, its pieces are
+    /// dropped (an intersection's w is lost to cancellation at this scale) or finite.
+    #[test]
+    fn vertices_near_the_largest_f64_clip_to_finite_pieces() {
+        let viewport = Viewport::new(24, 40);
+        let a = DVec4::new(11.75, 5.875, 6.0, -2.247_116_418_577_894_6e307);
+        let b = DVec4::new(6.0, 6.0, 5.283_203_125, 1.063_869_179_420_472e308);
+        let mut out = Vec::new();
+        clip_triangle([a, b, b], 63, 0, &viewport, &mut out);
+        for t in &out {
+            for v in t.vertices {
+                assert!(
+                    v.unsnapped_x.is_finite()
+                        && v.unsnapped_y.is_finite()
+                        && (0.0..=1.0).contains(&v.z),
+                    "{v:?}"
+                );
+            }
+        }
+    }
+
+    /// A vertex is a projective point: scaled by a power of two large enough to be rescaled
+    /// before clipping (2¹⁰⁰⁰ on every vertex), a triangle through the near plane and the guard
+    /// band gives the same pieces, bit for bit (powers of two commute with the arithmetic).
+    #[test]
+    fn huge_vertices_clip_as_their_unscaled_points() {
+        let viewport = Viewport::new(64, 64);
+        let triangle = [
+            DVec4::new(0.0, 0.0, -2.0, 1.0),
+            DVec4::new(600.0, 0.25, 0.0, 1.0),
+            DVec4::new(0.0, 0.5, 0.5, 2.0),
+        ];
+        let pieces = |triangle: [DVec4; 3]| {
+            let mut out = Vec::new();
+            clip_triangle(triangle, 63, 0, &viewport, &mut out);
+            out
+        };
+        let unscaled = pieces(triangle);
+        assert!(!unscaled.is_empty());
+        let huge = f64::from_bits((1023 + 1000) << 52);
+        assert_eq!(pieces(triangle.map(|c| c * huge)), unscaled);
+    }
 
     #[test]
     fn a_triangle_through_the_near_plane_becomes_a_quad() {
