@@ -108,7 +108,7 @@ pub(crate) fn clip_triangle(
         }
         polygon[..count].copy_from_slice(&next[..count]);
     }
-    if polygon[..count].iter().any(|c| !(c.w >= MIN_W)) {
+    if polygon[..count].iter().any(|c| c.w.is_nan() || c.w < MIN_W) {
         return;
     }
     let window: Vec<WindowVertex> = polygon[..count]
