@@ -251,3 +251,14 @@ fn a_vertex_with_subnormal_w_has_a_finite_window_position() {
 fn a_triangle_with_w_near_the_largest_f64_clips_to_finite_pieces() {
     replay("raster/clip-nan-window", shadowlab_fuzz::raster);
 }
+
+/// A triangle with y = 2·10²³⁶ and −2.2·10²⁸⁹ at two vertices crossing the far, bottom and top
+/// planes: the intersection with the bottom guard plane, interpolated between endpoints of those
+/// magnitudes, came out at y = −2.8·10²¹⁹ instead of on the plane (−497), and reached the snap
+/// outside the guard band (debug builds: "… outside the guard band"). Found by this session's
+/// second raster run after 9 minutes. Fixed: an intersection's coordinate across the plane is set
+/// from the plane's equation (`clip.rs`, `onto_plane`).
+#[test]
+fn an_intersection_of_huge_endpoints_lies_on_its_plane() {
+    replay("raster/guard-band-escape", shadowlab_fuzz::raster);
+}

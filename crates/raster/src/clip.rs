@@ -45,6 +45,24 @@ fn distance(plane: u8, c: DVec4, (gx, gy): (f64, f64)) -> f64 {
     }
 }
 
+/// `c`, an intersection with `plane`, with the plane's coordinate set from its equation (`z = ±w`,
+/// `x = ±g_x·w`, `y = ±g_y·w`). Interpolated, that coordinate carries an error of ε times the
+/// endpoints' magnitude: endpoints at y = 2·10²³⁶ and −2.7·10²⁸⁸ put the intersection with the
+/// bottom guard plane at y = −2.8·10²¹⁹ instead of −497, far outside the guard band (found by the
+/// raster fuzzer). Set from w, it lies on the plane; the other coordinates were clipped to the
+/// planes before, so their error stays at ε of the guard band.
+fn onto_plane(plane: u8, mut c: DVec4, (gx, gy): (f64, f64)) -> DVec4 {
+    match plane {
+        code::LEFT => c.x = -gx * c.w,
+        code::RIGHT => c.x = gx * c.w,
+        code::BOTTOM => c.y = -gy * c.w,
+        code::TOP => c.y = gy * c.w,
+        code::NEAR => c.z = -c.w,
+        _ => c.z = c.w,
+    }
+    c
+}
+
 /// The planes in the order they are applied.
 const PLANES: [u8; 6] = [
     code::NEAR,
@@ -98,7 +116,7 @@ pub(crate) fn clip_triangle(
                     (b, a, db, da)
                 };
                 let t = d_in / (d_in - d_out);
-                next[kept] = inside + (outside_vertex - inside) * t;
+                next[kept] = onto_plane(plane, inside + (outside_vertex - inside) * t, guard);
                 kept += 1;
             }
         }
@@ -126,6 +144,7 @@ pub(crate) fn clip_triangle(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::fixed::SUBPIXELS_F64;
 
     /// The raster fuzzer's find: w near f64's largest overflowed the guard-band distances, and
     /// an intersection became NaN (debug builds panicked in the snap). Scaled first, its pieces are
@@ -145,6 +164,41 @@ mod tests {
                         && (0.0..=1.0).contains(&v.z),
                     "{v:?}"
                 );
+            }
+        }
+    }
+
+    /// The raster fuzzer's second find: interpolated between endpoints at y = 2·10²³⁶ and
+    /// −2.7·10²⁸⁸, the bottom guard plane's intersection was 2.8·10²¹⁹ off the plane. Every
+    /// piece's vertices now lie within the guard band and the depth range.
+    #[test]
+    fn intersections_of_huge_endpoints_lie_on_their_planes() {
+        let viewport = Viewport::new(24, 24);
+        let triangle = [
+            DVec4::new(
+                -0.125,
+                2.034_916_513_940_519_4e236,
+                1.738_212_971_1e-313,
+                1.0,
+            ),
+            DVec4::new(0.0, -2.192_695_645_360_899e289, 0.125, 1.0),
+            DVec4::new(0.0, 0.125, 1.125, 1.0),
+        ];
+        let outside = triangle
+            .iter()
+            .fold(0, |bits, &c| bits | viewport.clip_code(c));
+        let mut out = Vec::new();
+        clip_triangle(triangle, outside, 0, &viewport, &mut out);
+        assert!(!out.is_empty());
+        let (gx, gy) = viewport.guard();
+        for t in &out {
+            for v in t.vertices {
+                let (x, y) = (v.unsnapped_x / SUBPIXELS_F64, v.unsnapped_y / SUBPIXELS_F64);
+                assert!(
+                    x.abs() <= 12.0 * (gx + 1.0) && y.abs() <= 12.0 * (gy + 1.0),
+                    "{v:?}"
+                );
+                assert!((0.0..=1.0).contains(&v.z), "{v:?}");
             }
         }
     }
