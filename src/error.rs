@@ -3,6 +3,7 @@
 use std::fmt;
 use std::process::ExitCode;
 
+use shadowlab_analysis::setup_file::SetupError;
 use shadowlab_params::ParamError;
 use shadowlab_scene::ReadError;
 
@@ -57,6 +58,14 @@ impl fmt::Display for CliError {
             Self::Input(message) => f.write_str(message),
             Self::Failure(error) => write!(f, "{error:#}"),
         }
+    }
+}
+
+impl From<SetupError> for CliError {
+    /// A set-up file's error: an input error naming the file and the field (exit 2), unless the
+    /// operating system failed to read a file that is there (exit 1), as for scene files.
+    fn from(error: SetupError) -> Self {
+        Self::from_input_file(&error)
     }
 }
 

@@ -4,7 +4,7 @@ use std::path::PathBuf;
 
 use shadowlab_analysis::evaluate::evaluate_observed;
 use shadowlab_analysis::report::{self, technique_label};
-use shadowlab_analysis::setup_file::{SetupError, load_setup};
+use shadowlab_analysis::setup_file::load_setup;
 use shadowlab_analysis::temporal::Stability;
 
 use crate::args::EvaluateArgs;
@@ -136,14 +136,6 @@ pub(crate) fn run(args: &EvaluateArgs) -> Result<(), CliError> {
         ))?;
     }
     print_line(&out.path().display().to_string())
-}
-
-impl From<SetupError> for CliError {
-    /// A set-up file's error: an input error naming the file and the field (exit 2), unless the
-    /// operating system failed to read a file that is there (exit 1), as for scene files.
-    fn from(error: SetupError) -> Self {
-        Self::from_input_file(&error)
-    }
 }
 
 /// The shimmering pixels between consecutive frames (first light), one row per pair.
