@@ -385,6 +385,32 @@ fn run(args: &[&str]) {
     assert!(output.status.success(), "{args:?}: {}", stderr(&output));
 }
 
+/// `evaluate SCENE --export` of `combination`'s exported set-up into `evaluated`, asserting that
+/// each of its maps (two lights, two partitions, 128²) is the exported one, bit for bit.
+fn evaluate_again(scene: &str, export: &Path, combination: &str, evaluated: &Path) {
+    let setup = export.join(combination).join("setup.json");
+    run(&[
+        "evaluate",
+        scene,
+        "--setup",
+        setup.to_str().unwrap(),
+        "--export",
+        "--out",
+        evaluated.to_str().unwrap(),
+    ]);
+    for light in 0..2 {
+        for part in 0..2 {
+            let map = format!("{combination}/map-light{light}-part{part}.npy");
+            let again = read_npy(&evaluated.join("export").join(&map));
+            assert_eq!(again.shape, [128, 128]);
+            assert!(
+                again.data == read_npy(&export.join(&map)).data,
+                "{map} differs"
+            );
+        }
+    }
+}
+
 /// The exported scene and set-up reproduce the frame: a scene made of the exported `scene.obj`
 /// (every f64 of the world-space geometry) with the set-up's matrices renders every map bit for
 /// bit as the analysis rendered it, through shadowlab's own loaders (`evaluate --export`); so
@@ -407,28 +433,7 @@ fn exported_scenes_and_set_ups_render_the_exported_maps_bit_for_bit() {
     for technique in ["lispsm", "psm"] {
         let combination = format!("{technique}-128-2p-nearest");
         let evaluated = dir.path().join(format!("evaluate-{technique}"));
-        run(&[
-            "evaluate",
-            &rebuilt,
-            "--setup",
-            export
-                .join(&combination)
-                .join("setup.json")
-                .to_str()
-                .unwrap(),
-            "--export",
-            "--out",
-            evaluated.to_str().unwrap(),
-        ]);
-        for light in 0..2 {
-            for part in 0..2 {
-                let map = format!("{combination}/map-light{light}-part{part}.npy");
-                let again = read_npy(&evaluated.join("export").join(&map));
-                let first = read_npy(&export.join(&map));
-                assert_eq!(again.shape, [128, 128]);
-                assert!(again.data == first.data, "{map} differs");
-            }
-        }
+        evaluate_again(&rebuilt, &export, &combination, &evaluated);
         // evaluate's export lists its own files in its results.json and index, all written.
         let results: serde_json::Value =
             serde_json::from_str(&fs::read_to_string(evaluated.join("results.json")).unwrap())
@@ -446,29 +451,14 @@ fn exported_scenes_and_set_ups_render_the_exported_maps_bit_for_bit() {
     let analyzed = dir.path().join("analyze-exact");
     analyze_exported(&exact, "lispsm", "128", "2", &analyzed);
     let export = analyzed.join("export");
+    let glb = export.join("scene.glb");
     let evaluated = dir.path().join("evaluate-glb");
-    run(&[
-        "evaluate",
-        export.join("scene.glb").to_str().unwrap(),
-        "--setup",
-        export
-            .join("lispsm-128-2p-nearest/setup.json")
-            .to_str()
-            .unwrap(),
-        "--export",
-        "--out",
-        evaluated.to_str().unwrap(),
-    ]);
-    for light in 0..2 {
-        for part in 0..2 {
-            let map = format!("lispsm-128-2p-nearest/map-light{light}-part{part}.npy");
-            assert!(
-                read_npy(&evaluated.join("export").join(&map)).data
-                    == read_npy(&export.join(&map)).data,
-                "{map} differs"
-            );
-        }
-    }
+    evaluate_again(
+        glb.to_str().unwrap(),
+        &export,
+        "lispsm-128-2p-nearest",
+        &evaluated,
+    );
 }
 
 /// An engine's maps, given as depth images in the set-up file, are judged through the command
