@@ -6,8 +6,7 @@ use shadowlab_analysis::AnalysisError;
 use shadowlab_analysis::setup_file::{SetupError, setup_for};
 use shadowlab_shadow::optimal::{self, OptimalOptions, OptimalReport};
 use shadowlab_shadow::{
-    FrameOptions, LightSetup, ShadowError, ShadowMapping, Technique, eye_pass, plan_light,
-    scene_input,
+    LightSetup, ShadowError, ShadowMapping, Technique, eye_pass, plan_light, scene_input,
 };
 
 use crate::args::InspectArgs;
@@ -237,13 +236,7 @@ pub(crate) fn run(args: &InspectArgs) -> Result<(), CliError> {
         }
     }
     if let Some(file) = setup_file {
-        let options = FrameOptions {
-            plan: resolved.plan.clone(),
-            resolution: resolved.resolution,
-            format: resolved.format,
-            lookup: resolved.lookup.clone(),
-            snap_texels: 0,
-        };
+        let options = resolved.frame_options();
         let setup = setup_for(scene, &options).map_err(|e| match e {
             SetupError::NotRepresentable { .. }
             | SetupError::Analysis(AnalysisError::Shadow(ShadowError::NotDefined { .. })) => {

@@ -21,13 +21,7 @@ pub(crate) fn run(args: &RenderArgs) -> Result<(), CliError> {
     let resolved = resolve(&args.shadow)?;
     let scene = &resolved.scene;
     let technique = resolved.plan.technique;
-    let options = FrameOptions {
-        plan: resolved.plan.clone(),
-        resolution: resolved.resolution,
-        format: resolved.format,
-        lookup: resolved.lookup.clone(),
-        snap_texels: 0,
-    };
+    let options = resolved.frame_options();
     let target = args.out.clone().unwrap_or_else(|| {
         PathBuf::from("out/render").join(slug(
             &format!("{}-{}", scene.name, technique.key()),

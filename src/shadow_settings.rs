@@ -13,7 +13,7 @@ use shadowlab_scene::{
 };
 use shadowlab_shadow::optimal::OptimalOptions;
 use shadowlab_shadow::{
-    Bias, Filter, FocusPolicy, Lookup, PlanOptions, Splits, Technique, WarpChoice,
+    Bias, Filter, FocusPolicy, FrameOptions, Lookup, PlanOptions, Splits, Technique, WarpChoice,
 };
 
 use crate::args::{
@@ -32,6 +32,20 @@ pub(crate) struct Resolved {
     pub(crate) resolution: u32,
     pub(crate) lookup: Lookup,
     pub(crate) format: DepthFormat,
+}
+
+impl Resolved {
+    /// How one frame is made and read with these settings, measured as planned (no texel
+    /// snapping).
+    pub(crate) fn frame_options(&self) -> FrameOptions {
+        FrameOptions {
+            plan: self.plan.clone(),
+            resolution: self.resolution,
+            format: self.format,
+            lookup: self.lookup.clone(),
+            snap_texels: 0,
+        }
+    }
 }
 
 /// The scene's `[shadow]` table, read where no flag is given: each field parsed once, its error
