@@ -69,25 +69,7 @@ fn exports_agree_with_the_report_and_across_commands() {
     let dir = tempfile::tempdir().unwrap();
     let scene = scene_file(dir.path());
     let analyzed = dir.path().join("analyze");
-    let output = shadowlab(
-        &[
-            "analyze",
-            &scene,
-            "--techniques",
-            "uniform,lispsm",
-            "--resolutions",
-            "128",
-            "--partitions",
-            "1,2",
-            "--timing-runs",
-            "1",
-            "--export",
-            "--out",
-            analyzed.to_str().unwrap(),
-        ],
-        None,
-    );
-    assert!(output.status.success(), "{}", stderr(&output));
+    analyze_exported(&scene, "uniform,lispsm", "128", "1,2", &analyzed);
     let results: serde_json::Value =
         serde_json::from_str(&fs::read_to_string(analyzed.join("results.json")).unwrap()).unwrap();
     let export = analyzed.join("export");
@@ -237,55 +219,29 @@ fn evaluate_of_a_written_set_up_is_analyze() {
     let scene = scene_file(dir.path());
     let setup = dir.path().join("setup.json");
     for technique in ["lispsm", "psm"] {
-        let output = shadowlab(
-            &[
-                "inspect",
-                &scene,
-                "--technique",
-                technique,
-                "--resolution",
-                "128",
-                "--partitions",
-                "2",
-                "--setup-json",
-                setup.to_str().unwrap(),
-            ],
-            None,
-        );
-        assert!(output.status.success(), "{}", stderr(&output));
+        run(&[
+            "inspect",
+            &scene,
+            "--technique",
+            technique,
+            "--resolution",
+            "128",
+            "--partitions",
+            "2",
+            "--setup-json",
+            setup.to_str().unwrap(),
+        ]);
         let evaluated = dir.path().join(format!("evaluate-{technique}"));
-        let output = shadowlab(
-            &[
-                "evaluate",
-                &scene,
-                "--setup",
-                setup.to_str().unwrap(),
-                "--out",
-                evaluated.to_str().unwrap(),
-            ],
-            None,
-        );
-        assert!(output.status.success(), "{}", stderr(&output));
+        run(&[
+            "evaluate",
+            &scene,
+            "--setup",
+            setup.to_str().unwrap(),
+            "--out",
+            evaluated.to_str().unwrap(),
+        ]);
         let analyzed = dir.path().join(format!("analyze-{technique}"));
-        let output = shadowlab(
-            &[
-                "analyze",
-                &scene,
-                "--techniques",
-                technique,
-                "--resolutions",
-                "128",
-                "--partitions",
-                "2",
-                "--timing-runs",
-                "1",
-                "--export",
-                "--out",
-                analyzed.to_str().unwrap(),
-            ],
-            None,
-        );
-        assert!(output.status.success(), "{}", stderr(&output));
+        analyze_exported(&scene, technique, "128", "2", &analyzed);
         let results = |dir: &Path| -> serde_json::Value {
             serde_json::from_str(&fs::read_to_string(dir.join("results.json")).unwrap()).unwrap()
         };
