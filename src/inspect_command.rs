@@ -112,7 +112,9 @@ pub(crate) fn run(args: &InspectArgs) -> Result<(), CliError> {
             lights.push(parts);
             reports.push(light_reports);
         } else {
-            lights.push(plan_light(scene, light, plan, nearest).map_err(failed)?);
+            lights.push(
+                plan_light(scene, light, plan, nearest, resolved.resolution).map_err(failed)?,
+            );
         }
     }
     let report_of = |l: usize, p: usize| reports.get(l).and_then(|r| r.get(p));

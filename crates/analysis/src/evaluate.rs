@@ -22,7 +22,7 @@ use shadowlab_raster::{EyeImage, NO_TRIANGLE};
 use shadowlab_scene::{Camera, Scene, SceneLight};
 use shadowlab_shadow::{
     Bias, Eye, Filter, GivenDepths, LightMaps, LightSetup, LightSource, MapOptions, MapSource,
-    Partition, PartitionMap, ShadowError, ShadowMapping, Shadows, eye_image, shadows_of,
+    Partition, PartitionMap, Selection, ShadowError, ShadowMapping, Shadows, eye_image, shadows_of,
 };
 
 use crate::aliasing::Footprint;
@@ -166,6 +166,7 @@ pub fn evaluate_observed<E: From<SetupError>>(
             .map(|(light, partitions)| {
                 Ok(LightMaps {
                     light: LightSource::from_scene(light),
+                    selection: Selection::DEFAULT,
                     partitions: partitions
                         .iter()
                         .map(|p| partition_map(setup, &moved.camera, light, p))
@@ -316,6 +317,7 @@ fn partition_map(
             near: partition.near,
             far: partition.far,
             face: None,
+            sphere: None,
             setup: light_setup,
         },
         source,

@@ -8,7 +8,7 @@ use shadowlab_scene::Scene;
 use shadowlab_shadow::optimal::OptimalOptions;
 use shadowlab_shadow::{
     Bias, Filter, FocusPolicy, FrameOptions, LightShadow, Lookup, PlanOptions, ShadowError,
-    Shadows, Splits, Technique, Timings, eye_pass, render_shadows, scene_eye, serving,
+    Shadows, Splits, Technique, Timings, eye_pass, render_shadows, scene_eye, served,
     view::shade_eye,
 };
 use shadowlab_trace::Bvh;
@@ -283,16 +283,21 @@ pub fn footprints_of(
         return vec![None; eye.triangle.len()];
     };
     let view = scene_eye(scene);
-    let (e, v) = (view.pose.eye(), view.pose.forward());
     let maps: Vec<_> = shadow
         .maps
         .iter()
         .map(|(_, map)| (&map.setup, map.resolution))
         .collect();
     footprints_served(&maps, eye, &scene.camera, |pixel| {
-        let point = eye.position[pixel];
-        // The partition the lookup reads.
-        Some(serving(&shadow.maps, |(p, _)| p, point, (point - e).dot(v)))
+        // The partition the lookup reads (the nearer of two it blends).
+        served(
+            &shadow.maps,
+            |(p, _)| p,
+            &shadow.selection,
+            &view,
+            eye.position[pixel],
+        )
+        .map(|s| s.index)
     })
 }
 

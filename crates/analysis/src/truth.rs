@@ -294,7 +294,13 @@ pub fn map_truth(scene: &Scene, eye: &EyeImage, resolution: u32) -> Result<Truth
         outside_cone: Vec::with_capacity(scene.lights.len()),
     };
     for light in &scene.lights {
-        let partitions = plan_light(scene, light, &PlanOptions::new(Technique::Uniform), None)?;
+        let partitions = plan_light(
+            scene,
+            light,
+            &PlanOptions::new(Technique::Uniform),
+            None,
+            resolution,
+        )?;
         let setup = &partitions
             .first()
             .expect("plan_light plans one partition when asked for one")

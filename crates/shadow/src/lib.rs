@@ -12,6 +12,7 @@
 //! | logarithmic | LiSPSM §4, Lloyd et al. 2008 | [`logarithmic`] |
 //! | logarithmic, face-partitioned | Lloyd et al. EGSR 2006 §5.2, TOG 2008 | [`faces`] |
 //! | scene-optimized (`optimal`) | CG06 Algorithm 1 (Chong & Gortler 2006) | [`optimal`] |
+//! | engines' cascades (`bevy`, `filament`, `godot`, `babylon`, `threejs`, `unity`, `unreal`) | the engines' sources, `docs/engine-sources.md` | [`presets`], [`cascades`]; selection, blending and fading: `selection` |
 //!
 //! Every light-space technique (uniform, LiSPSM, logarithmic) works in LiSPSM's light space
 //! (`shadowlab_hull::LightSpace`: y toward the light, the viewer looking down −z), for spot lights
@@ -24,6 +25,7 @@
 //! scene-optimized map has no warp axis: its x and y follow the sides of the samples' rectangle.)
 //! Matrices act on column vectors and produce GL clip space (NDC depth in `[−1, 1]`).
 
+pub mod cascades;
 mod error;
 pub mod faces;
 mod focus;
@@ -36,8 +38,10 @@ pub mod measure;
 pub mod optimal;
 mod parameter;
 mod plan;
+pub mod presets;
 pub mod psm;
 mod render;
+mod selection;
 mod setup;
 mod snap;
 mod technique;
@@ -49,12 +53,16 @@ pub use faces::FaceRegion;
 pub use input::{Eye, FocusPolicy, LightSource, PlanInput};
 pub use lookup::{Bias, DEFAULT_DISK_SEED, DEFAULT_MIN_VARIANCE, Filter, Lookup};
 pub use map::{MapOptions, ShadowMap};
-pub use plan::{Partition, Splits, plan, plan_partitions, serving};
+pub use plan::{Partition, Splits, plan, plan_partitions};
+pub use presets::{Engine, Stabilisation};
 pub use render::{
     FLAT_SCENE_THICKNESS, FLAT_SCENE_ULPS, Frame, FrameOptions, GivenDepths, LightMaps,
     LightShadow, MapSource, PartitionMap, PlanOptions, Shadows, Timings, eye_image, eye_pass,
     plan_frame, plan_light, render_frame, render_shadows, scene_box, scene_eye, scene_input,
-    shadows_of,
+    selection_of, shadows_of,
+};
+pub use selection::{
+    Beyond, CullingSphere, Fade, FadeCurve, Selection, SelectionRule, Served, served,
 };
 pub use setup::{LightSetup, PsmReport, ShadowMapping, WarpReport};
 pub use snap::snap_to_texels;

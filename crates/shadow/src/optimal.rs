@@ -1138,6 +1138,7 @@ pub fn plan_partitions(
                     near,
                     far,
                     face: None,
+                    sphere: None,
                     setup: optimized.setup,
                 },
                 optimized.report,

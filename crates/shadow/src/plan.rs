@@ -1,6 +1,6 @@
 //! `plan`: from the eye, the light and the scene bounds to a [`LightSetup`].
 
-use glam::{DMat4, DVec2, DVec3, DVec4};
+use glam::{DMat4, DVec2, DVec4};
 use shadowlab_hull::{Aabb2, ConvexHull2, MinAreaRect, Perspective, convex_hull_2d};
 use shadowlab_params::splits::SplitScheme;
 use shadowlab_params::{DepthRange, LightAngle, ParameterRule};
@@ -10,6 +10,7 @@ use crate::faces::{self, FaceRegion};
 use crate::focus::{focus_in_light_space, view_model};
 use crate::input::PlanInput;
 use crate::parameter::{self, WarpGeometry};
+use crate::selection::CullingSphere;
 use crate::setup::{LightSetup, ShadowMapping, WarpReport};
 use crate::technique::{LogarithmicChoice, Technique, WarpChoice};
 use crate::warp::{self, Extents};
@@ -36,6 +37,12 @@ pub fn plan(input: &PlanInput, technique: Technique) -> Result<LightSetup, Shado
                      and its shadows), not a plan input alone: plan it with plan_light or \
                      optimal::plan"
                     .into(),
+        }),
+        Technique::Engine(..) => Err(ShadowError::NotDefined {
+            technique: technique.key(),
+            reason: "an engine's preset plans its own cascades and needs the map's size: plan it \
+                     with plan_light"
+                .into(),
         }),
         Technique::Given => Err(ShadowError::NotDefined {
             technique: "given",
@@ -211,48 +218,11 @@ pub struct Partition {
     /// For a face partition ([`crate::faces`]), the face of its z-partition's view whose projection
     /// it serves; `None`: all of the view at these depths.
     pub face: Option<FaceRegion>,
+    /// For a cascade fitted to a bounding sphere, the sphere (`SelectionRule::Containing` tests
+    /// it); `None` otherwise.
+    pub sphere: Option<CullingSphere>,
     /// Its light set-up, planned for the sub-frustum `[near, far]` (and the face).
     pub setup: LightSetup,
-}
-
-/// Which of `partitions` (nearest first, as planned; each reached through `partition`) serves the
-/// visible point `world` at eye depth `depth`: the z-partition is the last whose near is at most
-/// the depth (the first if none is); among its face partitions, the face whose projection holds the
-/// point most deeply (the first of equals).
-#[must_use]
-pub fn serving<T>(
-    partitions: &[T],
-    partition: impl Fn(&T) -> &Partition,
-    world: DVec3,
-    depth: f64,
-) -> usize {
-    let last = partitions
-        .iter()
-        .rposition(|p| partition(p).near <= depth)
-        .unwrap_or(0);
-    let Some(serving) = partitions.get(last).map(&partition) else {
-        return 0;
-    };
-    // A z-partition without faces is one map: the common case, decided without more work.
-    if serving.face.is_none() {
-        return last;
-    }
-    let near = serving.near;
-    let first = partitions[..last]
-        .iter()
-        .rposition(|p| partition(p).near != near)
-        .map_or(0, |k| k + 1);
-    let mut best = (last, f64::NEG_INFINITY);
-    for (k, p) in partitions.iter().enumerate().take(last + 1).skip(first) {
-        let inside = partition(p)
-            .face
-            .as_ref()
-            .map_or(f64::INFINITY, |face| face.inside(world));
-        if inside > best.1 {
-            best = (k, inside);
-        }
-    }
-    best.0
 }
 
 /// z-partitioning (CAD §3.3): the view's depth range split into `count` parts by `splits`, each
@@ -269,13 +239,28 @@ pub fn plan_partitions(
     splits: Splits,
     count: usize,
 ) -> Result<Vec<Partition>, ShadowError> {
+    let bounds: Vec<(f64, f64)> = partition_inputs(input, splits, count)?
+        .into_iter()
+        .map(|(near, far, _)| (near, far))
+        .collect();
+    plan_partitions_at(input, technique, &bounds)
+}
+
+/// [`plan_partitions`] of the sub-frusta between the eye depths `bounds` (each `(near, far)`).
+pub(crate) fn plan_partitions_at(
+    input: &PlanInput,
+    technique: Technique,
+    bounds: &[(f64, f64)],
+) -> Result<Vec<Partition>, ShadowError> {
     let mut partitions = Vec::new();
-    for (near, far, part) in partition_inputs(input, splits, count)? {
+    for &(near, far) in bounds {
+        let part = sub_frustum(input, near, far)?;
         if technique == Technique::Logarithmic(LogarithmicChoice::Faces) {
             partitions.extend(faces::plan(&part)?.into_iter().map(|face| Partition {
                 near,
                 far,
                 face: Some(face.region),
+                sphere: None,
                 setup: face.setup,
             }));
         } else {
@@ -283,11 +268,20 @@ pub fn plan_partitions(
                 near,
                 far,
                 face: None,
+                sphere: None,
                 setup: plan(&part, technique)?,
             });
         }
     }
     Ok(partitions)
+}
+
+/// `input` with the eye's projection cut to the eye depths `[near, far]`.
+fn sub_frustum(input: &PlanInput, near: f64, far: f64) -> Result<PlanInput, ShadowError> {
+    let projection = input.eye.projection;
+    let mut part = *input;
+    part.eye.projection = Perspective::new(projection.fov_y(), projection.aspect(), near, far)?;
+    Ok(part)
 }
 
 /// The sub-frusta of z-partitioning: the view's depth range split into `count` parts by `splits`,
@@ -317,12 +311,7 @@ pub(crate) fn partition_inputs(
     let boundaries = scheme.boundaries(range, count)?;
     boundaries
         .windows(2)
-        .map(|pair| {
-            let mut part = *input;
-            part.eye.projection =
-                Perspective::new(projection.fov_y(), projection.aspect(), pair[0], pair[1])?;
-            Ok((pair[0], pair[1], part))
-        })
+        .map(|pair| Ok((pair[0], pair[1], sub_frustum(input, pair[0], pair[1])?)))
         .collect()
 }
 

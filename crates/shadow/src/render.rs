@@ -17,7 +17,8 @@ use crate::input::{Eye, FocusPolicy, LightSource, PlanInput};
 use crate::lookup::Lookup;
 use crate::map::{MapOptions, ShadowMap};
 use crate::optimal::{self, OptimalOptions};
-use crate::plan::{Partition, Splits, plan_partitions, serving};
+use crate::plan::{Partition, Splits, plan_partitions};
+use crate::selection::{Selection, served};
 use crate::setup::ShadowMapping;
 use crate::snap::snap_to_texels;
 use crate::technique::Technique;
@@ -77,6 +78,8 @@ pub struct LightShadow {
     pub light: LightSource,
     /// The partitions (one if unpartitioned), nearest first, each with its rendered map.
     pub maps: Vec<(Partition, ShadowMap)>,
+    /// Which map serves a visible point ([`served`]).
+    pub selection: Selection,
 }
 
 /// Wall-clock time of each phase of a frame.
@@ -142,10 +145,15 @@ pub fn eye_pass(scene: &Scene) -> Result<(EyeImage, Option<f64>), ShadowError> {
         scene,
         &scene.camera.view_projection(NdcDepth::NegativeOneToOne),
     )?;
-    let nearest = eye_depths(&image, &scene_eye(scene))
+    let eye = scene_eye(scene);
+    let (e, v) = (eye.pose.eye(), eye.pose.forward());
+    let nearest = image
+        .triangle
         .iter()
-        .flatten()
-        .fold(f64::INFINITY, |a, b| a.min(*b));
+        .zip(&image.position)
+        .filter(|(t, _)| **t != NO_TRIANGLE)
+        .map(|(_, p)| (*p - e).dot(v))
+        .fold(f64::INFINITY, f64::min);
     Ok((image, nearest.is_finite().then_some(nearest)))
 }
 
@@ -222,21 +230,28 @@ pub fn scene_input(
     })
 }
 
-/// Plans one light of `scene` as `options` says: `partitions` z-partitions split by `splits` (one:
-/// the whole view), each with the technique, focused on `focus`, PSM's near plane at
-/// `nearest_visible_depth`. [`Technique::Optimal`] is planned from the scene itself with the
-/// optimizer's settings and the technique's step direction: a low-resolution eye pass, then each
-/// partition optimized on its own samples ([`crate::optimal::plan_partitions`]).
+/// Plans one light of `scene` as `options` says, for maps of `resolution` texels: `partitions`
+/// z-partitions split by `splits` (one: the whole view), each with the technique, focused on
+/// `focus`, PSM's near plane at `nearest_visible_depth`. [`Technique::Optimal`] is planned from the
+/// scene itself with the optimizer's settings and the technique's step direction: a low-resolution
+/// eye pass, then each partition optimized on its own samples
+/// ([`crate::optimal::plan_partitions`]). An engine's preset ([`Technique::Engine`]) plans its own
+/// cascades ([`crate::presets`]); the partition count and splits do not apply to it.
 ///
 /// # Errors
-/// As [`plan_partitions`] (or [`crate::optimal::plan_partitions`]); an invalid scene box.
+/// As [`plan_partitions`] (or [`crate::optimal::plan_partitions`], [`crate::Engine::plan`]); an invalid
+/// scene box.
 pub fn plan_light(
     scene: &Scene,
     light: &SceneLight,
     options: &PlanOptions,
     nearest_visible_depth: Option<f64>,
+    resolution: u32,
 ) -> Result<Vec<Partition>, ShadowError> {
     let input = scene_input(scene, light, nearest_visible_depth, options.focus)?;
+    if let Technique::Engine(engine, stabilisation) = options.technique {
+        return engine.plan(&input, options.technique, stabilisation, resolution);
+    }
     let partitions = options.partitions.max(1);
     if let Technique::Optimal(direction) = options.technique {
         let optimal = OptimalOptions {
@@ -290,7 +305,13 @@ pub fn plan_frame(
         .lights
         .iter()
         .map(|light| {
-            let mut partitions = plan_light(scene, light, &options.plan, nearest_visible)?;
+            let mut partitions = plan_light(
+                scene,
+                light,
+                &options.plan,
+                nearest_visible,
+                options.resolution,
+            )?;
             if options.snap_texels > 0 {
                 for partition in &mut partitions {
                     partition.setup =
@@ -331,6 +352,7 @@ pub fn render_shadows(
         .zip(planned)
         .map(|(light, partitions)| LightMaps {
             light: LightSource::from_scene(light),
+            selection: selection_of(options.plan.technique, light),
             partitions: partitions
                 .into_iter()
                 .map(|partition| PartitionMap {
@@ -386,15 +408,26 @@ pub struct PartitionMap {
 pub struct LightMaps {
     /// The light.
     pub light: LightSource,
-    /// Its partitions, nearest first (one if unpartitioned); each pixel is served by one of them
-    /// ([`serving`]).
+    /// Its partitions, nearest first (one if unpartitioned); each pixel is served by one of them,
+    /// or blended from two, as `selection` says ([`served`]).
     pub partitions: Vec<PartitionMap>,
+    /// Which map serves a visible point.
+    pub selection: Selection,
+}
+
+/// The selection of `technique`'s maps of `light`: an engine's for a directional light
+/// ([`crate::Engine::selection`]), shadowlab's otherwise ([`Selection::DEFAULT`]).
+#[must_use]
+pub fn selection_of(technique: Technique, light: &SceneLight) -> Selection {
+    match (technique, light) {
+        (Technique::Engine(engine, _), SceneLight::Directional { .. }) => engine.selection(),
+        _ => Selection::DEFAULT,
+    }
 }
 
 /// The shadows of `lights` for `scene`'s eye pass `eye`: each partition's map rendered (or its
 /// given depths stored), then every visible point looked up in the map of the partition that
-/// serves it ([`serving`], by its eye depth toward the scene's camera), with that partition's
-/// lookup. Planning takes no time here (`timings.planning` is zero): the partitions come planned.
+/// serves it (or blended from the two that do, faded: [`served`]), with that partition's lookup. Planning takes no time here (`timings.planning` is zero): the partitions come planned.
 /// `bvh` is what logarithmic maps are cast against; without it one is built, if one is needed.
 ///
 /// # Errors
@@ -407,7 +440,7 @@ pub fn shadows_of(
     bvh: Option<&Bvh>,
 ) -> Result<Shadows, ShadowError> {
     let mesh = Triangles::new(scene.mesh.positions(), scene.mesh.triangles());
-    let depths = eye_depths(eye, &scene_eye(scene));
+    let view = scene_eye(scene);
     let cast = lights.iter().flat_map(|l| &l.partitions).any(|p| {
         matches!(
             (&p.source, &p.partition.setup.mapping),
@@ -458,6 +491,7 @@ pub fn shadows_of(
         shadows.push(LightShadow {
             light: light.light,
             maps,
+            selection: light.selection,
         });
         lookups.push(light_lookups);
     }
@@ -466,7 +500,7 @@ pub fn shadows_of(
     let lit = shadows
         .iter()
         .zip(&lookups)
-        .map(|(shadow, lookups)| look_up(eye, &depths, shadow, lookups))
+        .map(|(shadow, lookups)| look_up(eye, &view, shadow, lookups))
         .collect();
     timings.lookup = start.elapsed();
     Ok(Shadows {
@@ -476,28 +510,12 @@ pub fn shadows_of(
     })
 }
 
-/// The eye depth `(p − e)·v` of each pixel's visible point (`None` where nothing is visible).
-fn eye_depths(image: &EyeImage, eye: &Eye) -> Vec<Option<f64>> {
-    let (e, v) = (eye.pose.eye(), eye.pose.forward());
-    image
-        .triangle
-        .iter()
-        .zip(&image.position)
-        .map(|(t, p)| (*t != NO_TRIANGLE).then(|| (*p - e).dot(v)))
-        .collect()
-}
-
 /// Rows of pixels looked up per parallel job; any size gives the same result.
 const LOOKUP_ROWS: usize = 8;
 
 /// How lit each pixel's visible point is by one light, each read with the lookup of the map that
-/// serves it (`lookups[k]` for `shadow.maps[k]`).
-fn look_up(
-    image: &EyeImage,
-    depths: &[Option<f64>],
-    shadow: &LightShadow,
-    lookups: &[Lookup],
-) -> Vec<f64> {
+/// serves it (`lookups[k]` for `shadow.maps[k]`), blended and faded as the light's selection says.
+fn look_up(image: &EyeImage, eye: &Eye, shadow: &LightShadow, lookups: &[Lookup]) -> Vec<f64> {
     let width = image.width as usize;
     let mut lit = vec![1.0; image.triangle.len()];
     lit.par_chunks_mut(width * LOOKUP_ROWS)
@@ -506,13 +524,19 @@ fn look_up(
             let first = chunk * width * LOOKUP_ROWS;
             for (k, value) in rows.iter_mut().enumerate() {
                 let pixel = first + k;
-                let Some(depth) = depths[pixel] else {
+                if image.triangle[pixel] == NO_TRIANGLE {
+                    continue;
+                }
+                let position: DVec3 = image.position[pixel];
+                let normal = image.normal[pixel];
+                let Some(serving) =
+                    served(&shadow.maps, |(p, _)| p, &shadow.selection, eye, position)
+                else {
                     continue;
                 };
-                let position: DVec3 = image.position[pixel];
-                let index = serving(&shadow.maps, |(p, _)| p, position, depth);
-                let map = &shadow.maps[index].1;
-                *value = lookups[index].lit_fraction(map, position, image.normal[pixel]);
+                *value = serving.combine(|index| {
+                    lookups[index].lit_fraction(&shadow.maps[index].1, position, normal)
+                });
             }
         });
     lit

@@ -4,6 +4,8 @@ use std::fmt;
 
 use shadowlab_params::{ParameterRule, WarpParameter};
 
+use crate::presets::{Engine, Stabilisation};
+
 /// A shadow-map technique: how the light's view and projection are built.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Technique {
@@ -35,6 +37,9 @@ pub enum Technique {
     /// (`shadowlab_analysis::setup_file`), as an engine dumped them. It has no planning of its own,
     /// so [`crate::plan`] refuses it; it labels the measurements of such a set-up (key `given`).
     Given,
+    /// An engine's default shadows ([`crate::presets`]): its cascades, fit, snapping, blending,
+    /// selection and bias, keyed by the engine's name; `ENGINE:unsnapped` without its snapping.
+    Engine(Engine, Stabilisation),
 }
 
 /// Which way the scene-optimized map's descent turns `p̃_4` (CG06 Algorithm 1 step 4).
@@ -300,6 +305,9 @@ fn stated(spec: &str, name: &str) -> Result<Option<f64>, String> {
         })
 }
 
+/// An engine preset's parameter that turns its snapping off.
+const UNSNAPPED: &str = "unsnapped";
+
 impl Technique {
     /// The technique keys, in the order outputs list them.
     pub const KEYS: [&'static str; 6] = [
@@ -326,6 +334,7 @@ impl Technique {
             Self::Logarithmic(_) => "logarithmic",
             Self::Optimal(_) => "optimal",
             Self::Given => "given",
+            Self::Engine(engine, _) => engine.key(),
         }
     }
 
@@ -361,6 +370,7 @@ impl Technique {
                 Some(choice.to_string())
             }
             Self::Optimal(StepDirection::Refitted) => Some(StepDirection::Refitted.key().into()),
+            Self::Engine(_, Stabilisation::Unsnapped) => Some(UNSNAPPED.into()),
             _ => None,
         }
     }
@@ -380,12 +390,17 @@ impl Technique {
             "lispsm" => Self::Lispsm(WarpChoice::PAPER),
             "logarithmic" => Self::LOGARITHMIC,
             "optimal" => Self::Optimal(StepDirection::Paper),
-            _ => {
-                return Err(format!(
-                    "unknown technique {key:?}; known: {}",
-                    Self::KEYS.join(", ")
-                ));
-            }
+            _ => match Engine::from_key(key) {
+                Some(engine) => Self::Engine(engine, Stabilisation::Engine),
+                None => {
+                    let engines: Vec<&str> = Engine::ALL.iter().map(|e| e.key()).collect();
+                    return Err(format!(
+                        "unknown technique {key:?}; known: {}, and the engines' presets {}",
+                        Self::KEYS.join(", "),
+                        engines.join(", ")
+                    ));
+                }
+            },
         };
         match (technique, parameter) {
             (_, None) => Ok(technique),
@@ -396,8 +411,15 @@ impl Technique {
                 .find(|d| d.key() == p)
                 .map(Self::Optimal)
                 .ok_or_else(|| format!("unknown step {p:?} for optimal; known: paper, refit")),
+            (Self::Engine(engine, _), Some(UNSNAPPED)) => {
+                Ok(Self::Engine(engine, Stabilisation::Unsnapped))
+            }
+            (Self::Engine(..), Some(p)) => Err(format!(
+                "unknown parameter {p:?} for the {key} preset; known: {UNSNAPPED}"
+            )),
             (_, Some(p)) => Err(format!(
-                "the parameter {p:?} applies to lispsm, logarithmic and optimal only, not to {key}"
+                "the parameter {p:?} applies to lispsm, logarithmic, optimal and the engines' \
+                 presets only, not to {key}"
             )),
         }
     }

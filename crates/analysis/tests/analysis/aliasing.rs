@@ -402,6 +402,7 @@ fn footprints_are_the_same_on_any_thread_count() {
             &scene.lights[0],
             &shadowlab_shadow::PlanOptions::new(technique),
             None,
+            256,
         )
         .unwrap_or_else(|e| panic!("{technique}: {e}"));
         let setup = &partitions[0].setup;

@@ -105,6 +105,7 @@ fn facing_away_shadows_only_through_occlusion_as_the_lookup_does() {
         &scene.lights[0],
         &PlanOptions::new(Technique::Uniform),
         None,
+        256,
     )
     .unwrap()[0]
         .setup;

@@ -8,7 +8,7 @@ use glam::DVec3;
 use shadowlab_scene::builtin_scene;
 use shadowlab_shadow::{
     Bias, FocusPolicy, FrameOptions, LogarithmicChoice, Lookup, Partition, PlanInput, PlanOptions,
-    Splits, Technique, plan, plan_partitions, render_frame, serving,
+    Selection, Splits, Technique, plan, plan_partitions, render_frame, served,
 };
 
 use crate::support::configuration;
@@ -86,13 +86,15 @@ fn back_faces_tile_the_view_and_cover_what_they_serve() {
                     assert!(warp.lambda.is_infinite(), "an end face is uniform");
                 }
             }
-            for (point, depth) in points_of_view(&input) {
+            for (point, _) in points_of_view(&input) {
                 let covering = parts
                     .iter()
                     .filter(|p| p.face.as_ref().unwrap().inside(point) >= -1e-9)
                     .count();
                 assert!(covering >= 1, "γ = {gamma_degrees}: {point} in no face");
-                let k = serving(&parts, |p| p, point, depth);
+                let k = served(&parts, |p| p, &Selection::DEFAULT, &input.eye, point)
+                    .expect("the last partition serves beyond")
+                    .index;
                 let window = parts[k].setup.mapping.window(point).expect("mapped");
                 assert!(
                     window.min_element() >= -1e-9 && window.max_element() <= 1.0 + 1e-9,

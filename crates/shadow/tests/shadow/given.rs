@@ -7,8 +7,8 @@ use shadowlab_raster::{DepthFormat, NO_TRIANGLE, RasterError};
 use shadowlab_scene::{Scene, builtin_scene};
 use shadowlab_shadow::{
     Bias, Filter, FrameOptions, GivenDepths, LightMaps, LightSource, Lookup, MapSource,
-    PartitionMap, PlanOptions, ShadowError, ShadowMap, Splits, Technique, eye_pass, plan_frame,
-    render_shadows, scene_eye, serving, shadows_of,
+    PartitionMap, PlanOptions, Selection, ShadowError, ShadowMap, Splits, Technique, eye_pass,
+    plan_frame, render_shadows, scene_eye, served, shadows_of,
 };
 
 /// `outdoor` at a small eye image.
@@ -45,6 +45,7 @@ fn a_maps_own_depths_given_back_change_nothing() {
         .iter()
         .map(|shadow| LightMaps {
             light: shadow.light,
+            selection: shadow.selection,
             partitions: shadow
                 .maps
                 .iter()
@@ -116,6 +117,7 @@ fn each_partition_is_read_with_its_own_lookup() {
         .zip(planned)
         .map(|(light, partitions)| LightMaps {
             light: LightSource::from_scene(light),
+            selection: Selection::DEFAULT,
             partitions: partitions
                 .into_iter()
                 .enumerate()
@@ -133,18 +135,19 @@ fn each_partition_is_read_with_its_own_lookup() {
         .collect();
     let mixed = shadows_of(&scene, &eye, lights, None).unwrap();
     let view = scene_eye(&scene);
-    let (e, v) = (view.pose.eye(), view.pose.forward());
     let maps = &mixed.lights[0].maps;
-    let mut served = [0; 2];
+    let mut counts = [0; 2];
     for pixel in (0..eye.triangle.len()).filter(|p| eye.triangle[*p] != NO_TRIANGLE) {
         let point: DVec3 = eye.position[pixel];
-        let k = serving(maps, |(p, _)| p, point, (point - e).dot(v));
-        served[k] += 1;
+        let k = served(maps, |(p, _)| p, &Selection::DEFAULT, &view, point)
+            .expect("the last partition serves beyond")
+            .index;
+        counts[k] += 1;
         let expected = if k == 0 { 1.0 } else { 0.0 };
         assert_eq!(
             mixed.lit[0][pixel], expected,
             "pixel {pixel}, partition {k}"
         );
     }
-    assert!(served[0] > 0 && served[1] > 0, "{served:?}");
+    assert!(counts[0] > 0 && counts[1] > 0, "{counts:?}");
 }

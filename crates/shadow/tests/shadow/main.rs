@@ -1,4 +1,6 @@
 //! Integration tests of `shadowlab-shadow`, one binary (ripgrep's layout):
+//! - `cascades`: engines' cascades: rotation-invariant fits, snapping in whole texels, selection
+//!   by depth and by containment, blending, fades, every preset on every built-in scene;
 //! - `closed_forms`: every technique's matrices, fitted to B = V, have the aliasing the closed forms
 //!   of `shadowlab-params` predict (LiSPSM eq. 3, CAD eq. 12 / GMNPR eq. 2, the logarithmic
 //!   constant, PSM shifted by Δ = LiSPSM with n = zn + Δ);
@@ -17,6 +19,7 @@
 //! - `snap`: texel snapping translates the window onto the grid and nothing else;
 //! - `support`: seeded configurations.
 
+mod cascades;
 mod closed_forms;
 mod faces;
 mod given;

@@ -533,6 +533,7 @@ fn optimal_is_a_technique_planned_from_the_scene() {
         &scene.lights[0],
         &PlanOptions::new(Technique::Optimal(StepDirection::Paper)),
         None,
+        256,
     )
     .unwrap();
     assert_eq!(parts.len(), 1);
@@ -627,6 +628,7 @@ fn plan_light_plans_with_the_given_optimizer_settings() {
             ..PlanOptions::new(Technique::Optimal(StepDirection::Paper))
         },
         None,
+        256,
     )
     .unwrap();
     let input = scene_input(&scene);

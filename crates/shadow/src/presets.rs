@@ -1,0 +1,451 @@
+//! Engines' shadow set-ups by name: each preset reproduces an engine's defaults — cascade count,
+//! split rule and its parameters, fit, snapping, blending, selection and fade — from the engine's
+//! source, cited per item (file and symbol; `docs/engine-sources.md` has the formulas and the
+//! commits read). `--technique bevy` plans a light as Bevy would.
+//!
+//! What every preset shares, shadowlab's choices (named in `docs/what-engines-ship.md`):
+//! - scene units are taken as metres, so the engines' distances (Bevy's 150, Godot's 100, Unity's
+//!   50) apply as they are;
+//! - each cascade's map is the study's resolution (the engines' own sizes are in [`Engine::map`]),
+//!   its depth format the study's;
+//! - a spot light gets one perspective map, fitted as shadowlab's `uniform` (engines render a spot
+//!   into one perspective map; their fits of it are not reproduced);
+//! - blending engines fit the next cascade from the start of the blend band, so both maps cover it
+//!   (Bevy does so itself; for Babylon and Unreal, named **band coverage**).
+
+use std::fmt;
+
+use shadowlab_params::DepthRange;
+use shadowlab_params::splits::SplitScheme;
+
+use crate::cascades::{self, CascadeFit, CascadeSlice, Snap};
+use crate::error::ShadowError;
+use crate::input::{LightSource, PlanInput};
+use crate::plan::{Partition, plan, plan_partitions_at};
+use crate::selection::{Beyond, Fade, FadeCurve, Selection, SelectionRule};
+use crate::technique::{ProductionVariant, Technique, WarpChoice};
+
+/// An engine whose default directional shadows a preset reproduces.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Engine {
+    /// Bevy (`crates/bevy_light/src/cascade.rs`, `crates/bevy_pbr/src/render/shadows.wgsl`).
+    Bevy,
+    /// Filament (`LightManager.h` `ShadowOptions`, `ShadowMap.cpp`, `ShadowMapManager.cpp`).
+    Filament,
+    /// Godot 4 (`renderer_scene_cull.cpp` `_light_instance_setup_directional_shadow`).
+    Godot,
+    /// Babylon.js `CascadedShadowGenerator` (`cascadedShadowGenerator.ts`).
+    Babylon,
+    /// three.js's CSM addon (`examples/jsm/csm/CSM.js`, `CSMFrustum.js`, `CSMShader.js`).
+    ThreeJs,
+    /// Unity URP (`UniversalRenderPipelineAsset.cs`, `ShadowUtils.cs`, `Shadows.hlsl`).
+    Unity,
+    /// Unreal Engine's documented defaults: its source is not public, so every item is
+    /// unverified (`docs/engine-sources.md` §7).
+    Unreal,
+}
+
+/// Whether a preset keeps its engine's stabilisation (texel snapping).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Stabilisation {
+    /// As the engine ships it.
+    #[default]
+    Engine,
+    /// Snapping off (`ENGINE:unsnapped`): the same cascades, windows where the fit puts them.
+    Unsnapped,
+}
+
+/// The map an engine allocates by default, for the docs' memory table.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct EngineMap {
+    /// Side of one cascade's map, texels (`None`: the engine has no default).
+    pub side: Option<u32>,
+    /// Bits per depth texel.
+    pub depth_bits: u32,
+}
+
+impl Engine {
+    /// Every engine, in the order outputs list them.
+    pub const ALL: [Self; 7] = [
+        Self::Bevy,
+        Self::Filament,
+        Self::Godot,
+        Self::Babylon,
+        Self::ThreeJs,
+        Self::Unity,
+        Self::Unreal,
+    ];
+
+    /// Its key, the technique's name: `bevy`, `filament`, `godot`, `babylon`, `threejs`, `unity`,
+    /// `unreal`.
+    #[must_use]
+    pub fn key(self) -> &'static str {
+        match self {
+            Self::Bevy => "bevy",
+            Self::Filament => "filament",
+            Self::Godot => "godot",
+            Self::Babylon => "babylon",
+            Self::ThreeJs => "threejs",
+            Self::Unity => "unity",
+            Self::Unreal => "unreal",
+        }
+    }
+
+    /// The engine named `key`.
+    #[must_use]
+    pub fn from_key(key: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|e| e.key() == key)
+    }
+
+    /// Its default map: Bevy `DirectionalLightShadowMap` 2048, Depth32Float; Filament `mapSize`
+    /// 1024, DEPTH16; Godot's 4096 atlas of 4 → 2048, 16-bit; Babylon none (a constructor
+    /// argument), 32-bit; three.js CSM `shadowMapSize` 2048, 32-bit (unverified per release); Unity
+    /// URP 2048 for its one cascade, 16-bit; Unreal `r.Shadow.MaxCSMResolution` 2048 (unverified).
+    #[must_use]
+    pub fn map(self) -> EngineMap {
+        let (side, depth_bits) = match self {
+            Self::Bevy => (Some(2048), 32),
+            Self::Filament => (Some(1024), 16),
+            Self::Godot | Self::Unity => (Some(2048), 16),
+            Self::Babylon => (None, 32),
+            Self::ThreeJs | Self::Unreal => (Some(2048), 32),
+        };
+        EngineMap { side, depth_bits }
+    }
+
+    /// How its cascades are chosen, blended and faded for a directional light.
+    #[must_use]
+    pub fn selection(self) -> Selection {
+        let depth = |blend, beyond, fade| Selection {
+            rule: SelectionRule::Depth,
+            blend,
+            beyond,
+            fade,
+        };
+        match self {
+            // `get_cascade_index`, `fetch_directional_shadow`: linear blend over the overlap,
+            // unshadowed beyond the last cascade.
+            Self::Bevy => depth(true, Beyond::Lit, None),
+            // `getShadowCascade`: the cascade count clamps to the last; no blending.
+            Self::Filament => depth(false, Beyond::Last, None),
+            // Split offsets, `blend_splits` off; the shadow fades out by smoothstep from 0.8 to
+            // 1.0 of the maximum distance.
+            Self::Godot => depth(
+                false,
+                Beyond::Lit,
+                Some(Fade {
+                    start: 0.8 * GODOT_MAX_DISTANCE,
+                    end: GODOT_MAX_DISTANCE,
+                    curve: FadeCurve::SmoothstepDepth,
+                }),
+            ),
+            // `cascadeBlendPercentage` 0.1: linear over the last tenth of each cascade.
+            Self::Babylon => depth(true, Beyond::Lit, None),
+            // `lights_fragment_begin`: intervals of linear depth; `fade` off.
+            Self::ThreeJs => depth(false, Beyond::Lit, None),
+            // `ComputeCascadeIndex` by culling sphere; the last cascade fades over the last
+            // `m_CascadeBorder` (0.2) of the shadow distance, linear in squared distance.
+            Self::Unity => Selection {
+                rule: SelectionRule::Containing,
+                blend: false,
+                beyond: Beyond::Lit,
+                fade: Some(Fade {
+                    start: (1.0 - UNITY_CASCADE_BORDER) * UNITY_SHADOW_DISTANCE,
+                    end: UNITY_SHADOW_DISTANCE,
+                    curve: FadeCurve::LinearSquaredDistance,
+                }),
+            },
+            // `CascadeTransitionFraction` 0.1 (unverified); its distance fade-out is not
+            // reproduced (its curve is not documented).
+            Self::Unreal => depth(true, Beyond::Lit, None),
+        }
+    }
+
+    /// The cascades of a camera whose view runs from eye depth `near` to `far`.
+    ///
+    /// # Errors
+    /// A parameter error for a depth range the split rules reject.
+    pub fn slices(self, near: f64, far: f64) -> Result<Vec<CascadeSlice>, ShadowError> {
+        let same = |bounds: &[f64]| -> Vec<CascadeSlice> {
+            bounds
+                .windows(2)
+                .map(|pair| CascadeSlice {
+                    select: (pair[0], pair[1]),
+                    slice: (pair[0], pair[1]),
+                })
+                .collect()
+        };
+        Ok(match self {
+            Self::Bevy => bevy_slices(),
+            // One cascade over the camera's [zn, zf] (`shadowCascades` = 1, `shadowFar` 0).
+            Self::Filament => same(&[near, far]),
+            Self::Godot => {
+                let max = GODOT_MAX_DISTANCE.min(far);
+                let mut bounds = vec![near];
+                bounds.extend(GODOT_SPLITS.iter().map(|s| near + s * (max - near)));
+                bounds.push(max);
+                same(&bounds)
+            }
+            Self::Babylon => banded(&babylon_bounds(near, far)?, BABYLON_BLEND),
+            Self::ThreeJs => threejs_slices(near, far)?,
+            // One cascade, `m_ShadowCascadeCount` = 1, to the shadow distance.
+            Self::Unity => same(&[near, UNITY_SHADOW_DISTANCE.max(near)]),
+            Self::Unreal => {
+                let distance = UNREAL_SHADOW_DISTANCE.max(near);
+                let count = f64::from(UNREAL_CASCADES);
+                let total = UNREAL_EXPONENT.powf(count) - 1.0;
+                let bounds: Vec<f64> = (0..=UNREAL_CASCADES)
+                    .map(|i| {
+                        near + (distance - near) * (UNREAL_EXPONENT.powi(i.cast_signed()) - 1.0)
+                            / total
+                    })
+                    .collect();
+                banded(&bounds, UNREAL_TRANSITION)
+            }
+        })
+    }
+
+    /// Its cascade fit and snapping (`stabilisation` off: no snapping).
+    #[must_use]
+    pub fn fit(self, stabilisation: Stabilisation) -> Option<(CascadeFit, Snap)> {
+        let (fit, snap) = match self {
+            // `calculate_cascade`: ceil'd diagonal square, centre floored to one texel.
+            Self::Bevy => (
+                CascadeFit::Diagonal { ceil: true },
+                Snap::CentreFloor { texels: 1 },
+            ),
+            // Non-stable by default: the LiSPSM plan of the slice (see [`Self::plan`]).
+            Self::Filament => return None,
+            // Sphere with a one-texel border, edges rounded to 2 texels.
+            Self::Godot => (
+                CascadeFit::Sphere { texel_border: true },
+                Snap::EdgesRound { texels: 2 },
+            ),
+            // `stabilizeCascades` off: the corners' box; the origin rounded to a whole texel.
+            Self::Babylon => (CascadeFit::CornerBox, Snap::CentreRound { texels: 1 }),
+            // Diagonal square, no rounding; centre floored to one texel.
+            Self::ThreeJs => (
+                CascadeFit::Diagonal { ceil: false },
+                Snap::CentreFloor { texels: 1 },
+            ),
+            // Culling sphere (native, unverified); snapping unverified, so none.
+            Self::Unity => (
+                CascadeFit::Sphere {
+                    texel_border: false,
+                },
+                Snap::Off,
+            ),
+            // Sphere bounds and a one-texel snap, both unverified.
+            Self::Unreal => (
+                CascadeFit::Sphere {
+                    texel_border: false,
+                },
+                Snap::CentreRound { texels: 1 },
+            ),
+        };
+        Some(match stabilisation {
+            Stabilisation::Engine => (fit, snap),
+            Stabilisation::Unsnapped => (fit, Snap::Off),
+        })
+    }
+
+    /// Plans `input`'s light as the engine does, labelled `technique`, for maps of `resolution`
+    /// texels: a directional light's cascades ([`crate::cascades`], or for Filament its LiSPSM map
+    /// of each cascade with Filament's parameter), a spot light's one map fitted as `uniform`.
+    ///
+    /// # Errors
+    /// As [`crate::cascades::plan`] and [`crate::plan`].
+    pub fn plan(
+        self,
+        input: &PlanInput,
+        technique: Technique,
+        stabilisation: Stabilisation,
+        resolution: u32,
+    ) -> Result<Vec<Partition>, ShadowError> {
+        let projection = input.eye.projection;
+        let (near, far) = (projection.near(), projection.far());
+        let labelled = |mut partitions: Vec<Partition>| {
+            for p in &mut partitions {
+                p.setup.technique = technique;
+            }
+            partitions
+        };
+        if let LightSource::Spot { .. } = input.light {
+            return Ok(labelled(vec![Partition {
+                near,
+                far,
+                face: None,
+                sphere: None,
+                setup: plan(input, Technique::Uniform)?,
+            }]));
+        }
+        let slices = self.slices(near, far)?;
+        match self.fit(stabilisation) {
+            Some(fit) => cascades::plan(input, technique, &slices, fit, resolution),
+            None => {
+                // Filament: `applyLISPSM` on each cascade's focused light frustum.
+                let bounds: Vec<(f64, f64)> = slices.iter().map(|s| s.slice).collect();
+                let lispsm = Technique::Lispsm(WarpChoice::Production(ProductionVariant::Filament));
+                plan_partitions_at(input, lispsm, &bounds).map(labelled)
+            }
+        }
+    }
+}
+
+impl fmt::Display for Engine {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.key())
+    }
+}
+
+/// Bevy `CascadeShadowConfigBuilder::default`: 4 cascades, `minimum_distance` 0.1,
+/// `first_cascade_far_bound` 10, `maximum_distance` 150, `overlap_proportion` 0.2.
+const BEVY_CASCADES: i32 = 4;
+const BEVY_MINIMUM: f64 = 0.1;
+const BEVY_FIRST_FAR: f64 = 10.0;
+const BEVY_MAXIMUM: f64 = 150.0;
+const BEVY_OVERLAP: f64 = 0.2;
+
+/// Bevy's cascades (`calculate_cascade_bounds`, `build_directional_light_cascades`): far bounds
+/// `b_i = first·(max/first)^(i/(N − 1))`; cascade 0 starts at `minimum_distance`, cascade `i > 0`
+/// at `(1 − overlap)·b_{i−1}`. They do not depend on the camera's near and far.
+fn bevy_slices() -> Vec<CascadeSlice> {
+    let far = |i: i32| {
+        BEVY_FIRST_FAR
+            * (BEVY_MAXIMUM / BEVY_FIRST_FAR).powf(f64::from(i) / f64::from(BEVY_CASCADES - 1))
+    };
+    (0..BEVY_CASCADES)
+        .map(|i| {
+            let near = if i == 0 {
+                BEVY_MINIMUM
+            } else {
+                (1.0 - BEVY_OVERLAP) * far(i - 1)
+            };
+            CascadeSlice {
+                select: (near, far(i)),
+                slice: (near, far(i)),
+            }
+        })
+        .collect()
+}
+
+/// Godot's `directional_shadow_max_distance` default, 100.
+const GODOT_MAX_DISTANCE: f64 = 100.0;
+/// Godot's `directional_shadow_split_1/2/3`: 0.1, 0.2, 0.5 of the range.
+const GODOT_SPLITS: [f64; 3] = [0.1, 0.2, 0.5];
+
+/// Babylon `DEFAULT_CASCADES_COUNT` 4, `lambda` 0.5, `cascadeBlendPercentage` 0.1.
+const BABYLON_CASCADES: usize = 4;
+const BABYLON_LAMBDA: f64 = 0.5;
+const BABYLON_BLEND: f64 = 0.1;
+
+/// Babylon `_splitFrustum`: `d_i = λ(log − uni) + uni` at `p = (i + 1)/N` over `[minZ, maxZ]` (the
+/// camera's, `shadowMaxZ` defaulting to the camera's far) — Zhang's practical split with weight λ.
+fn babylon_bounds(near: f64, far: f64) -> Result<Vec<f64>, ShadowError> {
+    Ok(SplitScheme::Practical {
+        weight: BABYLON_LAMBDA,
+    }
+    .boundaries(DepthRange::new(near, far)?, BABYLON_CASCADES)?)
+}
+
+/// Cascades from `bounds` with a blend band over the last `fraction` of each cascade's own length:
+/// cascade `i + 1` is selected, and its map fitted, from `b_{i+1} − fraction·(b_{i+1} − b_i)`
+/// (band coverage), so the two overlap across the band.
+fn banded(bounds: &[f64], fraction: f64) -> Vec<CascadeSlice> {
+    bounds
+        .windows(2)
+        .enumerate()
+        .map(|(i, pair)| {
+            let start = if i == 0 {
+                pair[0]
+            } else {
+                let (b0, b1) = (bounds[i - 1], pair[0]);
+                b1 - fraction * (b1 - b0)
+            };
+            CascadeSlice {
+                select: (start, pair[1]),
+                slice: (start, pair[1]),
+            }
+        })
+        .collect()
+}
+
+/// three.js CSM: 3 cascades, `mode` 'practical' (λ 0.5, hard-coded), `maxFar` 100000.
+const THREEJS_CASCADES: i32 = 3;
+const THREEJS_LAMBDA: f64 = 0.5;
+const THREEJS_MAX_FAR: f64 = 100_000.0;
+
+/// three.js CSM `getBreaks` and `CSMFrustum.split`: breaks `b_i = lerp(u_i, l_i, ½)` with
+/// `u_i = (n + (f − n)i/N)/f`, `l_i = n(f/n)^(i/N)/f` (fractions of f); cascade i's map is fitted
+/// to the slice at eye depths `n + (f − n)·b` while the shader selects it on `depth/(f − n) ∈
+/// [b_i, b_{i+1})` — the two meanings of a break that the source has, both kept.
+fn threejs_slices(near: f64, far: f64) -> Result<Vec<CascadeSlice>, ShadowError> {
+    let f = far.min(THREEJS_MAX_FAR);
+    DepthRange::new(near, f)?;
+    let n = near;
+    let count = f64::from(THREEJS_CASCADES);
+    let mut breaks = vec![0.0];
+    for i in 1..THREEJS_CASCADES {
+        let i = f64::from(i);
+        let uniform = (n + (f - n) * i / count) / f;
+        let log = n * (f / n).powf(i / count) / f;
+        breaks.push(uniform + (log - uniform) * THREEJS_LAMBDA);
+    }
+    breaks.push(1.0);
+    Ok(breaks
+        .windows(2)
+        .map(|b| CascadeSlice {
+            select: ((f - n) * b[0], (f - n) * b[1]),
+            slice: (n + (f - n) * b[0], n + (f - n) * b[1]),
+        })
+        .collect())
+}
+
+/// Unity URP `m_ShadowDistance` 50 and `m_CascadeBorder` 0.2.
+const UNITY_SHADOW_DISTANCE: f64 = 50.0;
+const UNITY_CASCADE_BORDER: f64 = 0.2;
+
+/// Unreal (unverified): `DynamicShadowCascades` 3, `CascadeDistributionExponent` 3,
+/// `DynamicShadowDistanceMovableLight` 20000 cm, `CascadeTransitionFraction` 0.1; splits
+/// `z_i = near + (D − near)(e^i − 1)/(e^N − 1)`.
+const UNREAL_CASCADES: u32 = 3;
+const UNREAL_EXPONENT: f64 = 3.0;
+const UNREAL_SHADOW_DISTANCE: f64 = 200.0;
+const UNREAL_TRANSITION: f64 = 0.1;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bevy_bounds_are_its_defaults() {
+        let far: Vec<f64> = bevy_slices().iter().map(|s| s.select.1).collect();
+        let expected = [10.0, 24.662_120_743_304_7, 60.822_019_955_734, 150.0];
+        for (a, b) in far.iter().zip(expected) {
+            assert!((a - b).abs() < 1e-9, "{far:?}");
+        }
+        assert_eq!(bevy_slices()[1].select.0, 8.0);
+    }
+
+    #[test]
+    fn godot_bounds_with_near_0_05() {
+        let slices = Engine::Godot.slices(0.05, 4000.0).unwrap();
+        let far: Vec<f64> = slices.iter().map(|s| s.select.1).collect();
+        let expected = [10.045, 20.04, 50.025, 100.0];
+        for (a, b) in far.iter().zip(expected) {
+            assert!((a - b).abs() < 1e-12, "{far:?}");
+        }
+    }
+
+    #[test]
+    fn unreal_bounds_are_a_geometric_series() {
+        let slices = Engine::Unreal.slices(0.0_f64.max(1.0), 1000.0).unwrap();
+        // (3^i − 1)/(3^3 − 1): 2/26, 8/26 of 199 after the near of 1.
+        assert!((slices[0].select.1 - (1.0 + 199.0 * 2.0 / 26.0)).abs() < 1e-12);
+        assert!((slices[1].select.1 - (1.0 + 199.0 * 8.0 / 26.0)).abs() < 1e-12);
+        assert_eq!(slices[2].select.1, 200.0);
+        // The band: cascade 1 starts a tenth of cascade 0's length before its far end.
+        let f0 = slices[0].select.1;
+        assert!((slices[1].select.0 - (f0 - 0.1 * (f0 - 1.0))).abs() < 1e-12);
+    }
+}

@@ -1,0 +1,321 @@
+//! Engines' cascades: the fits they claim (sphere and diagonal fits unchanged when the camera turns;
+//! snapping moves windows in whole texels), selection by depth and by containment, blending across
+//! the overlap, the fade, and every preset rendering every built-in scene.
+
+use glam::{DMat4, DQuat, DVec3};
+use shadowlab_hull::{Aabb, Perspective, ViewPose};
+use shadowlab_scene::{BUILTIN_SCENES, builtin_scene};
+use shadowlab_shadow::{
+    Beyond, CullingSphere, Engine, Eye, Fade, FadeCurve, FocusPolicy, FrameOptions, LightSetup,
+    LightSource, Lookup, Partition, PlanInput, PlanOptions, Selection, SelectionRule,
+    ShadowMapping, Stabilisation, Technique, render_frame, served,
+};
+
+const RESOLUTION: u32 = 1024;
+
+/// A camera at `eye` turned by `yaw` about world y, under a fixed sun, in a large scene box.
+fn input(eye: DVec3, yaw: f64) -> PlanInput {
+    let forward = DQuat::from_rotation_y(yaw) * DVec3::new(0.0, -0.3, -1.0).normalize();
+    let pose = ViewPose::look_to(eye, forward, DVec3::Y).unwrap();
+    PlanInput {
+        eye: Eye {
+            pose,
+            projection: Perspective::new(60f64.to_radians(), 16.0 / 9.0, 0.5, 400.0).unwrap(),
+        },
+        light: LightSource::directional(DVec3::new(0.3, 1.0, 0.2)).unwrap(),
+        scene: Aabb::new(
+            DVec3::new(-500.0, -1.0, -500.0),
+            DVec3::new(500.0, 40.0, 500.0),
+        )
+        .unwrap(),
+        nearest_visible_depth: None,
+        focus: FocusPolicy::Light,
+    }
+}
+
+fn planned(engine: Engine, stabilisation: Stabilisation, input: &PlanInput) -> Vec<Partition> {
+    engine
+        .plan(
+            input,
+            Technique::Engine(engine, stabilisation),
+            stabilisation,
+            RESOLUTION,
+        )
+        .unwrap()
+}
+
+fn matrices(setup: &LightSetup) -> (DMat4, DMat4) {
+    let ShadowMapping::Projective { view, projection } = setup.mapping else {
+        panic!("cascades are projective");
+    };
+    (view, projection)
+}
+
+/// The window's width and height in world units: 2 over the projection's x and y scales.
+fn window_size(setup: &LightSetup) -> (f64, f64) {
+    let (_, p) = matrices(setup);
+    (2.0 / p.x_axis.x, 2.0 / p.y_axis.y)
+}
+
+/// The window's left and bottom edges in the light basis.
+fn window_origin(setup: &LightSetup) -> (f64, f64) {
+    let (_, p) = matrices(setup);
+    // X = s·x + o is −1 at the left edge: x = (−1 − o)/s.
+    (
+        (-1.0 - p.w_axis.x) / p.x_axis.x,
+        (-1.0 - p.w_axis.y) / p.y_axis.y,
+    )
+}
+
+#[test]
+fn sphere_and_diagonal_fits_do_not_change_when_the_camera_turns() {
+    let eye = DVec3::new(3.0, 5.0, 7.0);
+    for engine in [
+        Engine::Bevy,
+        Engine::Godot,
+        Engine::ThreeJs,
+        Engine::Unity,
+        Engine::Unreal,
+    ] {
+        let reference = planned(engine, Stabilisation::Engine, &input(eye, 0.0));
+        for yaw in [0.3, 1.1, 2.9, -2.0] {
+            let turned = planned(engine, Stabilisation::Engine, &input(eye, yaw));
+            assert_eq!(turned.len(), reference.len());
+            for (a, b) in reference.iter().zip(&turned) {
+                let ((wa, ha), (wb, hb)) = (window_size(&a.setup), window_size(&b.setup));
+                // Rotation-invariant up to rounding; Godot's edge snapping may move each edge by
+                // half its 2-texel grid.
+                let grid = if engine == Engine::Godot {
+                    2.0 * wa / f64::from(RESOLUTION)
+                } else {
+                    1e-9 * wa
+                };
+                assert!(
+                    (wa - wb).abs() <= grid && (ha - hb).abs() <= grid,
+                    "{engine} yaw {yaw}: {wa}×{ha} against {wb}×{hb}"
+                );
+                if let (Some(sa), Some(sb)) = (a.sphere, b.sphere) {
+                    assert!(
+                        (sa.radius - sb.radius).abs() <= 1e-9 * sa.radius,
+                        "{engine}"
+                    );
+                }
+            }
+        }
+    }
+    // Babylon's box of the corners turns with the camera: its size changes.
+    let (a, b) = (
+        planned(Engine::Babylon, Stabilisation::Engine, &input(eye, 0.0)),
+        planned(Engine::Babylon, Stabilisation::Engine, &input(eye, 0.7)),
+    );
+    assert_ne!(window_size(&a[0].setup), window_size(&b[0].setup));
+}
+
+#[test]
+fn snapped_windows_move_in_whole_texels_and_unsnapped_ones_do_not() {
+    for engine in [
+        Engine::Bevy,
+        Engine::ThreeJs,
+        Engine::Babylon,
+        Engine::Godot,
+    ] {
+        let texels = if engine == Engine::Godot { 2.0 } else { 1.0 };
+        let mut moved_off_grid = false;
+        for step in 1..6 {
+            let shift = DVec3::new(0.0137 * f64::from(step), 0.0, 0.0291 * f64::from(step));
+            let (a, b) = (input(DVec3::ZERO, 0.2), input(shift, 0.2));
+            for (stabilisation, snapped) in [
+                (Stabilisation::Engine, true),
+                (Stabilisation::Unsnapped, false),
+            ] {
+                for (pa, pb) in planned(engine, stabilisation, &a).iter().zip(&planned(
+                    engine,
+                    stabilisation,
+                    &b,
+                )) {
+                    let (w, _) = window_size(&pa.setup);
+                    let grid = texels * w / f64::from(RESOLUTION);
+                    let ((xa, _), (xb, _)) = (window_origin(&pa.setup), window_origin(&pb.setup));
+                    let steps = (xb - xa) / grid;
+                    let whole = (steps - steps.round()).abs() < 1e-6;
+                    if snapped {
+                        // Babylon's box changes size as the camera moves: its centre is on the
+                        // grid, its edges need not be.
+                        if engine != Engine::Babylon {
+                            assert!(whole, "{engine}: moved {steps} grid steps");
+                        }
+                        let (_, p) = matrices(&pa.setup);
+                        let centre = -p.w_axis.x / p.x_axis.x;
+                        let on_grid = centre / grid;
+                        if engine != Engine::Godot {
+                            assert!(
+                                (on_grid - on_grid.round()).abs() < 1e-6,
+                                "{engine}: centre {on_grid} grid steps"
+                            );
+                        }
+                    } else {
+                        moved_off_grid |= !whole;
+                    }
+                }
+            }
+        }
+        assert!(
+            moved_off_grid,
+            "{engine}: unsnapped windows stayed on the grid"
+        );
+    }
+}
+
+/// Partitions at the given selection depths, each a map of nothing in particular.
+fn partitions(bounds: &[(f64, f64)]) -> Vec<Partition> {
+    let setup = planned(
+        Engine::Bevy,
+        Stabilisation::Engine,
+        &input(DVec3::ZERO, 0.0),
+    )[0]
+    .setup
+    .clone();
+    bounds
+        .iter()
+        .map(|&(near, far)| Partition {
+            near,
+            far,
+            face: None,
+            sphere: None,
+            setup: setup.clone(),
+        })
+        .collect()
+}
+
+fn eye() -> Eye {
+    Eye {
+        pose: ViewPose::look_to(DVec3::ZERO, DVec3::NEG_Z, DVec3::Y).unwrap(),
+        projection: Perspective::new(1.0, 1.0, 0.1, 1000.0).unwrap(),
+    }
+}
+
+#[test]
+fn depth_selection_picks_the_first_cascade_whose_far_lies_beyond_and_blends_the_overlap() {
+    let parts = partitions(&[(0.1, 10.0), (8.0, 25.0), (20.0, 60.0)]);
+    let at = |depth: f64, selection: &Selection| {
+        served(
+            &parts,
+            |p| p,
+            selection,
+            &eye(),
+            DVec3::new(0.0, 0.0, -depth),
+        )
+    };
+    let plain = Selection::DEFAULT;
+    let index = |depth, selection| at(depth, selection).map(|s| s.index);
+    assert_eq!(index(5.0, &plain), Some(0));
+    assert_eq!(
+        index(9.0, &plain),
+        Some(0),
+        "the overlap goes to the earlier"
+    );
+    assert_eq!(index(10.0, &plain), Some(1));
+    assert_eq!(index(80.0, &plain), Some(2), "beyond: the last");
+    assert_eq!(at(9.0, &plain).unwrap().blend, None);
+
+    let bevy = Selection {
+        blend: true,
+        beyond: Beyond::Lit,
+        ..Selection::DEFAULT
+    };
+    assert_eq!(at(80.0, &bevy), None, "beyond the last cascade: lit");
+    assert_eq!(at(7.9, &bevy).unwrap().blend, None);
+    let blended = at(9.0, &bevy).unwrap();
+    assert_eq!(blended.index, 0);
+    let (next, weight) = blended.blend.unwrap();
+    assert_eq!(next, 1);
+    assert!((weight - 0.5).abs() < 1e-12, "(9 − 8)/(10 − 8): {weight}");
+    // s = (1 − w)·s₀ + w·s₁: a shadowed earlier map and a lit later one give w.
+    let lit = blended.combine(|k| if k == 0 { 0.0 } else { 1.0 });
+    assert!((lit - 0.5).abs() < 1e-12);
+    // Weights rise linearly across the band.
+    let weights: Vec<f64> = [8.5, 9.0, 9.5]
+        .iter()
+        .map(|d| at(*d, &bevy).unwrap().blend.unwrap().1)
+        .collect();
+    assert!((weights[1] - weights[0] - (weights[2] - weights[1])).abs() < 1e-12);
+}
+
+#[test]
+fn containment_selection_takes_the_first_sphere_holding_the_point() {
+    let mut parts = partitions(&[(0.1, 10.0), (10.0, 50.0)]);
+    parts[0].sphere = Some(CullingSphere {
+        centre: DVec3::new(0.0, 0.0, -5.0),
+        radius: 6.0,
+    });
+    parts[1].sphere = Some(CullingSphere {
+        centre: DVec3::new(0.0, 0.0, -30.0),
+        radius: 25.0,
+    });
+    let unity = Selection {
+        rule: SelectionRule::Containing,
+        blend: false,
+        beyond: Beyond::Lit,
+        fade: None,
+    };
+    let at = |p: DVec3| served(&parts, |p| p, &unity, &eye(), p).map(|s| s.index);
+    assert_eq!(at(DVec3::new(0.0, 0.0, -9.0)), Some(0));
+    // Eye depth 9, but outside the first sphere: the second serves it (by depth, the first would).
+    assert_eq!(at(DVec3::new(5.0, 0.0, -9.0)), Some(1));
+    assert_eq!(at(DVec3::new(0.0, 0.0, -60.0)), None);
+}
+
+#[test]
+fn fades_rise_from_start_to_end() {
+    let godot = Fade {
+        start: 80.0,
+        end: 100.0,
+        curve: FadeCurve::SmoothstepDepth,
+    };
+    assert_eq!(godot.amount(70.0, 0.0), 0.0);
+    assert_eq!(godot.amount(90.0, 0.0), 0.5);
+    assert_eq!(godot.amount(120.0, 0.0), 1.0);
+    let unity = Fade {
+        start: 40.0,
+        end: 50.0,
+        curve: FadeCurve::LinearSquaredDistance,
+    };
+    let mid = (0.5 * (40.0f64.powi(2) + 50.0f64.powi(2))).sqrt();
+    assert!((unity.amount(0.0, mid) - 0.5).abs() < 1e-12);
+    assert_eq!(unity.amount(0.0, 10.0), 0.0);
+}
+
+#[test]
+fn every_preset_renders_every_builtin_scene() {
+    for name in BUILTIN_SCENES {
+        let mut scene = builtin_scene(name).unwrap();
+        scene.camera.width = 96;
+        scene.camera.height = 64;
+        for engine in Engine::ALL {
+            let technique = Technique::Engine(engine, Stabilisation::Engine);
+            let options = FrameOptions {
+                plan: PlanOptions::new(technique),
+                resolution: 256,
+                format: shadowlab_raster::DepthFormat::F32,
+                lookup: Lookup::new(
+                    shadowlab_shadow::Bias::DEFAULT,
+                    shadowlab_shadow::Filter::Nearest,
+                ),
+                snap_texels: 0,
+            };
+            let frame = render_frame(&scene, &options)
+                .unwrap_or_else(|e| panic!("{name} with {engine}: {e}"));
+            for (light, lit) in frame.lights.iter().zip(&frame.lit) {
+                assert!(!light.maps.is_empty());
+                assert!(
+                    lit.iter().all(|v| (0.0..=1.0).contains(v)),
+                    "{name} {engine}"
+                );
+            }
+            assert!(
+                frame.lit.iter().flatten().any(|v| *v < 1.0),
+                "{name} with {engine}: no shadow at all"
+            );
+        }
+    }
+}
