@@ -12,6 +12,7 @@
 //! | logarithmic | LiSPSM §4, Lloyd et al. 2008 | [`logarithmic`] |
 //! | logarithmic, face-partitioned | Lloyd et al. EGSR 2006 §5.2, TOG 2008 | [`faces`] |
 //! | scene-optimized (`optimal`) | CG06 Algorithm 1 (Chong & Gortler 2006) | [`optimal`] |
+//! | sample distribution (z-partitions from the eye pass's samples) | Lauritzen, Salvi & Lefohn, I3D 2011 | [`sdsm`] |
 //!
 //! Every light-space technique (uniform, LiSPSM, logarithmic) works in LiSPSM's light space
 //! (`shadowlab_hull::LightSpace`: y toward the light, the viewer looking down −z), for spot lights
@@ -38,6 +39,7 @@ mod parameter;
 mod plan;
 pub mod psm;
 mod render;
+pub mod sdsm;
 mod setup;
 mod snap;
 mod technique;
