@@ -80,7 +80,7 @@ pub(crate) fn run(args: &InspectArgs) -> Result<(), CliError> {
         .clone()
         .map(|path| OutputFile::check(path, "--setup-json", TEXT_BOUND))
         .transpose()?;
-    let (_, nearest) =
+    let (eye, nearest) =
         eye_pass(scene).map_err(|e| CliError::Failure(anyhow::anyhow!("eye pass: {e}")))?;
     let mut lights = Vec::new();
     // Per light, the optimizer's report per partition (the scene-optimized map only).
@@ -113,7 +113,8 @@ pub(crate) fn run(args: &InspectArgs) -> Result<(), CliError> {
             reports.push(light_reports);
         } else {
             lights.push(
-                plan_light(scene, light, plan, nearest, resolved.resolution).map_err(failed)?,
+                plan_light(scene, light, plan, nearest, resolved.resolution, Some(&eye))
+                    .map_err(failed)?,
             );
         }
     }

@@ -300,6 +300,7 @@ pub fn map_truth(scene: &Scene, eye: &EyeImage, resolution: u32) -> Result<Truth
             &PlanOptions::new(Technique::Uniform),
             None,
             resolution,
+            None,
         )?;
         let setup = &partitions
             .first()

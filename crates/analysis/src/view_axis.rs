@@ -88,9 +88,12 @@ pub fn curves(scene: &Scene, techniques: &[Technique]) -> Result<Vec<AxisCurve>,
     let directional = matches!(light, SceneLight::Directional { .. });
     let mut out = Vec::with_capacity(techniques.len());
     for &technique in techniques {
-        if matches!(technique, Technique::Optimal(_) | Technique::Engine(..)) {
-            // Planned from the scene's samples, or as cascades for a map size, not from a plan
-            // input: no V-fitted counterpart.
+        if matches!(
+            technique,
+            Technique::Optimal(_) | Technique::Sdsm(_) | Technique::Engine(..)
+        ) {
+            // Planned from the scene's or the eye pass's samples, or as cascades for a map size,
+            // not from a plan input: no V-fitted counterpart.
             continue;
         }
         let planned = |input: &PlanInput| match plan(input, technique) {
@@ -152,6 +155,10 @@ fn closed_form(technique: Technique, setup: &LightSetup, range: DepthRange, t: f
             ShadowMapping::Logarithmic(map) => Some(map.view_axis_error(setup.gamma.sin(), t)),
             ShadowMapping::Projective { .. } => None,
         },
-        Technique::Psm | Technique::Optimal(_) | Technique::Given | Technique::Engine(..) => None,
+        Technique::Psm
+        | Technique::Optimal(_)
+        | Technique::Given
+        | Technique::Sdsm(_)
+        | Technique::Engine(..) => None,
     }
 }

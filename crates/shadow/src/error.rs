@@ -35,6 +35,9 @@ pub enum ShadowError {
     },
     /// The light lies inside the region the shadow map must cover, so no projection from it fits.
     LightInsideFocusBody,
+    /// A map fitted to the eye pass's samples ([`crate::sdsm`]) has none to fit: nothing is
+    /// visible, or nothing visible lies inside the spot light's cone.
+    NoSamples,
 }
 
 impl fmt::Display for ShadowError {
@@ -56,6 +59,10 @@ impl fmt::Display for ShadowError {
             Self::LightInsideFocusBody => {
                 f.write_str("the light lies inside the region its shadow map must cover")
             }
+            Self::NoSamples => f.write_str(
+                "no visible sample to fit the shadow map to: nothing is visible, or nothing \
+                 visible lies inside the spot light's cone",
+            ),
         }
     }
 }
@@ -70,7 +77,8 @@ impl std::error::Error for ShadowError {
             Self::EmptyFocusBody
             | Self::FlatFocusBody { .. }
             | Self::NotDefined { .. }
-            | Self::LightInsideFocusBody => None,
+            | Self::LightInsideFocusBody
+            | Self::NoSamples => None,
         }
     }
 }

@@ -10,9 +10,10 @@ use crate::input::{Eye, LightSource};
 
 /// The techniques whose map does not depend on the eye's position in light space, only on the
 /// focus body B: the uniform maps (κ = 0, an orthographic fit of B; frustum limiting clips B's
-/// window with V's projection, which needs only V's corners). They are served where the eye lies
-/// on or behind a spot light's plane, where the eye has no position in the spot's space.
-const EYE_FREE_TECHNIQUES: [&str; 2] = ["uniform", "uniform_limited"];
+/// window with V's projection, which needs only V's corners) and the sample distribution map (an
+/// orthographic box around the eye pass's samples, [`crate::sdsm`]). They are served where the eye
+/// lies on or behind a spot light's plane, where the eye has no position in the spot's space.
+const EYE_FREE_TECHNIQUES: [&str; 3] = ["uniform", "uniform_limited", "sdsm"];
 
 /// Where a light-space technique works: an optional projective pre-transform (a spot light's
 /// view-projection, after which its rays are parallel), then LiSPSM's light space with its origin at

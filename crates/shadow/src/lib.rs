@@ -13,6 +13,7 @@
 //! | logarithmic, face-partitioned | Lloyd et al. EGSR 2006 §5.2, TOG 2008 | [`faces`] |
 //! | scene-optimized (`optimal`) | CG06 Algorithm 1 (Chong & Gortler 2006) | [`optimal`] |
 //! | engines' cascades (`bevy`, `filament`, `godot`, `babylon`, `threejs`, `unity`, `unreal`) | the engines' sources, `docs/engine-sources.md` | [`presets`], [`cascades`]; selection, blending and fading: `selection` |
+//! | sample distribution (z-partitions from the eye pass's samples) | Lauritzen, Salvi & Lefohn, I3D 2011 | [`sdsm`] |
 //!
 //! Every light-space technique (uniform, LiSPSM, logarithmic) works in LiSPSM's light space
 //! (`shadowlab_hull::LightSpace`: y toward the light, the viewer looking down −z), for spot lights
@@ -41,6 +42,7 @@ mod plan;
 pub mod presets;
 pub mod psm;
 mod render;
+pub mod sdsm;
 mod selection;
 mod setup;
 mod snap;

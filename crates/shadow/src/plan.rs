@@ -38,6 +38,12 @@ pub fn plan(input: &PlanInput, technique: Technique) -> Result<LightSetup, Shado
                      optimal::plan"
                     .into(),
         }),
+        Technique::Sdsm(_) => Err(ShadowError::NotDefined {
+            technique: "sdsm",
+            reason: "sample distribution shadow maps are fitted to the eye pass's samples: plan \
+                     them with plan_light and the eye image"
+                .into(),
+        }),
         Technique::Engine(..) => Err(ShadowError::NotDefined {
             technique: technique.key(),
             reason: "an engine's preset plans its own cascades and needs the map's size: plan it \

@@ -18,6 +18,7 @@ use crate::lookup::Lookup;
 use crate::map::{MapOptions, ShadowMap};
 use crate::optimal::{self, OptimalOptions};
 use crate::plan::{Partition, Splits, plan_partitions};
+use crate::sdsm;
 use crate::selection::{Selection, served};
 use crate::setup::ShadowMapping;
 use crate::snap::snap_to_texels;
@@ -235,11 +236,13 @@ pub fn scene_input(
 /// `focus`, PSM's near plane at `nearest_visible_depth`. [`Technique::Optimal`] is planned from the
 /// scene itself with the optimizer's settings and the technique's step direction: a low-resolution
 /// eye pass, then each partition optimized on its own samples
-/// ([`crate::optimal::plan_partitions`]). An engine's preset ([`Technique::Engine`]) plans its own
+/// ([`crate::optimal::plan_partitions`]). [`Technique::Sdsm`] is fitted to the visible samples of
+/// `eye`, the eye pass ([`crate::sdsm::plan`]). An engine's preset ([`Technique::Engine`]) plans its own
 /// cascades ([`crate::presets`]); the partition count and splits do not apply to it.
 ///
 /// # Errors
-/// As [`plan_partitions`] (or [`crate::optimal::plan_partitions`], [`crate::Engine::plan`]); an invalid
+/// As [`plan_partitions`] (or [`crate::optimal::plan_partitions`], [`crate::Engine::plan`],
+/// [`crate::sdsm::plan`]); [`ShadowError::NotDefined`] for SDSM without an eye pass; an invalid
 /// scene box.
 pub fn plan_light(
     scene: &Scene,
@@ -247,12 +250,32 @@ pub fn plan_light(
     options: &PlanOptions,
     nearest_visible_depth: Option<f64>,
     resolution: u32,
+    eye: Option<&EyeImage>,
 ) -> Result<Vec<Partition>, ShadowError> {
     let input = scene_input(scene, light, nearest_visible_depth, options.focus)?;
-    if let Technique::Engine(engine, stabilisation) = options.technique {
-        return engine.plan(&input, options.technique, stabilisation, resolution);
-    }
     let partitions = options.partitions.max(1);
+    match options.technique {
+        Technique::Engine(engine, stabilisation) => {
+            return engine.plan(&input, options.technique, stabilisation, resolution);
+        }
+        Technique::Sdsm(variant) => {
+            let image = eye.ok_or_else(|| ShadowError::NotDefined {
+                technique: "sdsm",
+                reason: "sample distribution shadow maps are fitted to an eye pass's samples, \
+                         and none was given"
+                    .into(),
+            })?;
+            let samples: Vec<DVec3> = image
+                .triangle
+                .iter()
+                .zip(&image.position)
+                .filter(|(t, _)| **t != NO_TRIANGLE)
+                .map(|(_, p)| *p)
+                .collect();
+            return sdsm::plan(&input, &samples, variant, partitions);
+        }
+        _ => {}
+    }
     if let Technique::Optimal(direction) = options.technique {
         let optimal = OptimalOptions {
             direction,
@@ -292,7 +315,7 @@ pub fn render_frame(scene: &Scene, options: &FrameOptions) -> Result<Frame, Shad
 /// Plans every light of `scene` as `options` says ([`plan_light`]), with each map's window snapped
 /// to its texel grid when `options.snap_texels` is set ([`snap_to_texels`]): the partitions, per
 /// light in the scene's order, that [`render_shadows`] renders. `nearest_visible` is the eye
-/// pass's nearest visible depth (PSM's near plane).
+/// pass's nearest visible depth (PSM's near plane), `eye` the eye pass (SDSM's samples).
 ///
 /// # Errors
 /// As [`plan_light`].
@@ -300,6 +323,7 @@ pub fn plan_frame(
     scene: &Scene,
     options: &FrameOptions,
     nearest_visible: Option<f64>,
+    eye: Option<&EyeImage>,
 ) -> Result<Vec<Vec<Partition>>, ShadowError> {
     scene
         .lights
@@ -311,6 +335,7 @@ pub fn plan_frame(
                 &options.plan,
                 nearest_visible,
                 options.resolution,
+                eye,
             )?;
             if options.snap_texels > 0 {
                 for partition in &mut partitions {
@@ -339,7 +364,7 @@ pub fn render_shadows(
     bvh: Option<&Bvh>,
 ) -> Result<Shadows, ShadowError> {
     let start = Instant::now();
-    let planned = plan_frame(scene, options, nearest_visible)?;
+    let planned = plan_frame(scene, options, nearest_visible, Some(eye))?;
     let planning = start.elapsed();
     let map_options = MapOptions {
         resolution: options.resolution,

@@ -5,6 +5,7 @@ use std::fmt;
 use shadowlab_params::{ParameterRule, WarpParameter};
 
 use crate::presets::{Engine, Stabilisation};
+use crate::sdsm::SdsmVariant;
 
 /// A shadow-map technique: how the light's view and projection are built.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -37,6 +38,11 @@ pub enum Technique {
     /// (`shadowlab_analysis::setup_file`), as an engine dumped them. It has no planning of its own,
     /// so [`crate::plan`] refuses it; it labels the measurements of such a set-up (key `given`).
     Given,
+    /// Sample distribution shadow maps (Lauritzen, Salvi & Lefohn, I3D 2011; [`crate::sdsm`]): the
+    /// partitions and each one's window taken from the eye pass's visible samples, split as the
+    /// variant says (`sdsm`, `sdsm:kmeans`). Needs the eye pass, so it is planned by
+    /// [`crate::plan_light`] with the eye image, not by [`crate::plan`].
+    Sdsm(SdsmVariant),
     /// An engine's default shadows ([`crate::presets`]): its cascades, fit, snapping, blending,
     /// selection and bias, keyed by the engine's name; `ENGINE:unsnapped` without its snapping.
     Engine(Engine, Stabilisation),
@@ -310,13 +316,14 @@ const UNSNAPPED: &str = "unsnapped";
 
 impl Technique {
     /// The technique keys, in the order outputs list them.
-    pub const KEYS: [&'static str; 6] = [
+    pub const KEYS: [&'static str; 7] = [
         "uniform",
         "uniform_limited",
         "psm",
         "lispsm",
         "logarithmic",
         "optimal",
+        "sdsm",
     ];
 
     /// The logarithmic map with shadowlab's reference rule.
@@ -334,6 +341,7 @@ impl Technique {
             Self::Logarithmic(_) => "logarithmic",
             Self::Optimal(_) => "optimal",
             Self::Given => "given",
+            Self::Sdsm(_) => "sdsm",
             Self::Engine(engine, _) => engine.key(),
         }
     }
@@ -371,6 +379,7 @@ impl Technique {
             }
             Self::Optimal(StepDirection::Refitted) => Some(StepDirection::Refitted.key().into()),
             Self::Engine(_, Stabilisation::Unsnapped) => Some(UNSNAPPED.into()),
+            Self::Sdsm(variant) if variant != SdsmVariant::Log => Some(variant.to_string()),
             _ => None,
         }
     }
@@ -390,6 +399,7 @@ impl Technique {
             "lispsm" => Self::Lispsm(WarpChoice::PAPER),
             "logarithmic" => Self::LOGARITHMIC,
             "optimal" => Self::Optimal(StepDirection::Paper),
+            "sdsm" => Self::Sdsm(SdsmVariant::Log),
             _ => match Engine::from_key(key) {
                 Some(engine) => Self::Engine(engine, Stabilisation::Engine),
                 None => {
@@ -411,6 +421,7 @@ impl Technique {
                 .find(|d| d.key() == p)
                 .map(Self::Optimal)
                 .ok_or_else(|| format!("unknown step {p:?} for optimal; known: paper, refit")),
+            (Self::Sdsm(_), Some(p)) => SdsmVariant::parse(p).map(Self::Sdsm),
             (Self::Engine(engine, _), Some(UNSNAPPED)) => {
                 Ok(Self::Engine(engine, Stabilisation::Unsnapped))
             }
@@ -418,8 +429,8 @@ impl Technique {
                 "unknown parameter {p:?} for the {key} preset; known: {UNSNAPPED}"
             )),
             (_, Some(p)) => Err(format!(
-                "the parameter {p:?} applies to lispsm, logarithmic, optimal and the engines' \
-                 presets only, not to {key}"
+                "the parameter {p:?} applies to lispsm, logarithmic, optimal, sdsm and the \
+                 engines' presets only, not to {key}"
             )),
         }
     }

@@ -24,8 +24,8 @@ use crate::report::filter_label;
 /// technique cannot be planned for the scene.
 pub fn setup_for(scene: &Scene, options: &FrameOptions) -> Result<SetupFile, SetupError> {
     let technique = options.plan.technique;
-    let (_, nearest_visible) = eye_pass(scene)?;
-    let lights = plan_frame(scene, options, nearest_visible)?
+    let (eye, nearest_visible) = eye_pass(scene)?;
+    let lights = plan_frame(scene, options, nearest_visible, Some(&eye))?
         .iter()
         .map(|partitions| {
             Ok(LightEntry {

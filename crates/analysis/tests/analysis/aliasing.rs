@@ -403,6 +403,7 @@ fn footprints_are_the_same_on_any_thread_count() {
             &shadowlab_shadow::PlanOptions::new(technique),
             None,
             256,
+            None,
         )
         .unwrap_or_else(|e| panic!("{technique}: {e}"));
         let setup = &partitions[0].setup;

@@ -106,6 +106,7 @@ fn facing_away_shadows_only_through_occlusion_as_the_lookup_does() {
         &PlanOptions::new(Technique::Uniform),
         None,
         256,
+        None,
     )
     .unwrap()[0]
         .setup;

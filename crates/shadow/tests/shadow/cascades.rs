@@ -1,10 +1,11 @@
 //! Engines' cascades: the fits they claim (sphere and diagonal fits unchanged when the camera turns;
 //! snapping moves windows in whole texels), selection by depth and by containment, blending across
-//! the overlap, the fade, and every preset rendering every built-in scene.
+//! the overlap, the fade, and every preset and SDSM variant rendering every built-in scene.
 
 use glam::{DMat4, DQuat, DVec3};
 use shadowlab_hull::{Aabb, Perspective, ViewPose};
 use shadowlab_scene::{BUILTIN_SCENES, builtin_scene};
+use shadowlab_shadow::sdsm::SdsmVariant;
 use shadowlab_shadow::{
     Beyond, CullingSphere, Engine, Eye, Fade, FadeCurve, FocusPolicy, FrameOptions, LightSetup,
     LightSource, Lookup, Partition, PlanInput, PlanOptions, Selection, SelectionRule,
@@ -286,15 +287,22 @@ fn fades_rise_from_start_to_end() {
 }
 
 #[test]
-fn every_preset_renders_every_builtin_scene() {
+fn every_preset_and_sdsm_variant_renders_every_builtin_scene() {
+    let techniques: Vec<Technique> = Engine::ALL
+        .into_iter()
+        .map(|engine| Technique::Engine(engine, Stabilisation::Engine))
+        .chain(SdsmVariant::ALL.into_iter().map(Technique::Sdsm))
+        .collect();
     for name in BUILTIN_SCENES {
         let mut scene = builtin_scene(name).unwrap();
         scene.camera.width = 96;
         scene.camera.height = 64;
-        for engine in Engine::ALL {
-            let technique = Technique::Engine(engine, Stabilisation::Engine);
+        for &technique in &techniques {
             let options = FrameOptions {
-                plan: PlanOptions::new(technique),
+                plan: PlanOptions {
+                    partitions: 4,
+                    ..PlanOptions::new(technique)
+                },
                 resolution: 256,
                 format: shadowlab_raster::DepthFormat::F32,
                 lookup: Lookup::new(
@@ -304,17 +312,17 @@ fn every_preset_renders_every_builtin_scene() {
                 snap_texels: 0,
             };
             let frame = render_frame(&scene, &options)
-                .unwrap_or_else(|e| panic!("{name} with {engine}: {e}"));
+                .unwrap_or_else(|e| panic!("{name} with {technique}: {e}"));
             for (light, lit) in frame.lights.iter().zip(&frame.lit) {
                 assert!(!light.maps.is_empty());
                 assert!(
                     lit.iter().all(|v| (0.0..=1.0).contains(v)),
-                    "{name} {engine}"
+                    "{name} {technique}"
                 );
             }
             assert!(
                 frame.lit.iter().flatten().any(|v| *v < 1.0),
-                "{name} with {engine}: no shadow at all"
+                "{name} with {technique}: no shadow at all"
             );
         }
     }

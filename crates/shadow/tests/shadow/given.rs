@@ -72,8 +72,8 @@ fn a_maps_own_depths_given_back_change_nothing() {
 #[test]
 fn given_depths_are_stored_in_their_format_and_fill_the_map() {
     let scene = scene();
-    let (_, nearest) = eye_pass(&scene).unwrap();
-    let setup = plan_frame(&scene, &options(1), nearest).unwrap()[0][0]
+    let (eye, nearest) = eye_pass(&scene).unwrap();
+    let setup = plan_frame(&scene, &options(1), nearest, Some(&eye)).unwrap()[0][0]
         .setup
         .clone();
     let depths = vec![0.3, 1.0, 0.0, 0.123_456_789];
@@ -109,7 +109,7 @@ fn each_partition_is_read_with_its_own_lookup() {
     let scene = scene();
     let options = options(2);
     let (eye, nearest) = eye_pass(&scene).unwrap();
-    let planned = plan_frame(&scene, &options, nearest).unwrap();
+    let planned = plan_frame(&scene, &options, nearest, Some(&eye)).unwrap();
     let offset = |offset: f64| Lookup::new(Bias::Constant { offset }, Filter::Nearest);
     let lights = scene
         .lights

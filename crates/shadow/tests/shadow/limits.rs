@@ -294,7 +294,7 @@ fn a_spot_light_at_the_eye_is_served_by_the_uniform_maps() {
     ] {
         match plan(&input, technique) {
             Err(ShadowError::NotDefined { reason, .. }) => assert!(
-                reason.contains("uniform, uniform_limited and psm serve such a light"),
+                reason.contains("uniform, uniform_limited, sdsm and psm serve such a light"),
                 "{technique}: {reason}"
             ),
             other => panic!("{technique}: {other:?}"),

@@ -16,6 +16,8 @@
 //! - `pictures`: the annotated eye and light views hold the raw ones pixel for pixel;
 //! - `rules`: each warp-parameter choice computes what its source computes, in its units; stated
 //!   λ, n and focus bodies are used as stated;
+//! - `sdsm`: sample distribution maps hold every sample in the window that serves it, tightly;
+//!   log splits have equal ratios; k-means is deterministic; empty partitions merge;
 //! - `snap`: texel snapping translates the window onto the grid and nothing else;
 //! - `support`: seeded configurations.
 
@@ -29,5 +31,6 @@ mod lookups;
 mod optimal;
 mod pictures;
 mod rules;
+mod sdsm;
 mod snap;
 mod support;

@@ -534,6 +534,7 @@ fn optimal_is_a_technique_planned_from_the_scene() {
         &PlanOptions::new(Technique::Optimal(StepDirection::Paper)),
         None,
         256,
+        None,
     )
     .unwrap();
     assert_eq!(parts.len(), 1);
@@ -629,6 +630,7 @@ fn plan_light_plans_with_the_given_optimizer_settings() {
         },
         None,
         256,
+        None,
     )
     .unwrap();
     let input = scene_input(&scene);
