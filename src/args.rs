@@ -135,16 +135,19 @@ pub(crate) struct SceneArg {
     pub(crate) gltf_scene: Option<usize>,
 }
 
-/// The techniques every study command measures by default.
+/// The techniques every study command measures by default (the engines' presets are measured when
+/// named: `--techniques bevy,filament,godot,babylon,threejs,unity,unreal`).
 const ALL_TECHNIQUES: &str =
-    "uniform,uniform_limited,psm,lispsm,lispsm:minimax,logarithmic,optimal";
+    "uniform,uniform_limited,psm,lispsm,lispsm:minimax,logarithmic,optimal,sdsm";
 
 /// Arguments of `shadowlab analyze`.
 #[derive(Debug, Args)]
 pub(crate) struct AnalyzeArgs {
     #[command(flatten)]
     pub(crate) scene: SceneArg,
-    /// The techniques, comma-separated, each TECHNIQUE, lispsm:PARAMETER or optimal:refit.
+    /// The techniques, comma-separated: each TECHNIQUE or TECHNIQUE:PARAMETER (lispsm:minimax,
+    /// optimal:refit, sdsm:kmeans), or an engine's preset (bevy, filament, godot, babylon, threejs,
+    /// unity, unreal; ENGINE:unsnapped without its texel snapping).
     #[arg(long, value_delimiter = ',', default_value = ALL_TECHNIQUES, allow_hyphen_values = true, value_parser = technique_spec)]
     pub(crate) techniques: Vec<Technique>,
     /// Shadow-map sides, comma-separated (Chong and Gortler's: 750 to 2000).
@@ -298,7 +301,8 @@ pub(crate) struct TemporalArgs {
 pub(crate) struct CompareArgs {
     #[command(flatten)]
     pub(crate) scene: SceneArg,
-    /// The techniques, comma-separated, each `TECHNIQUE`, `lispsm:PARAMETER` or `optimal:refit`.
+    /// The techniques, comma-separated: each `TECHNIQUE` or `TECHNIQUE:PARAMETER`, or an engine's
+    /// preset (`bevy`, `filament`, `godot`, `babylon`, `threejs`, `unity`, `unreal`).
     #[arg(
         long,
         value_delimiter = ',',

@@ -126,6 +126,7 @@ pub(crate) fn run(args: &EvaluateArgs) -> Result<(), CliError> {
     }
     if let Some(Stability {
         shimmer: Ok(counts),
+        surface_shimmer: None,
         ..
     }) = &stability
     {

@@ -249,6 +249,7 @@ pub fn evaluate_observed<E: From<SetupError>>(
         technique: setup.technique,
         snap_texels: 0,
         shimmer: Ok(counts),
+        surface_shimmer: None,
     }))
 }
 

@@ -179,13 +179,19 @@ pub struct Study {
     pub view_axis: Vec<AxisCurve>,
 }
 
-/// Every combination of `options`, in order.
+/// Every combination of `options`, in order. An engine's preset plans its own cascades, so it has
+/// one combination per resolution and filter, with its directional light's cascade count as its
+/// partitions, whatever partition counts the study names.
 #[must_use]
 pub fn settings(options: &StudyOptions) -> Vec<Setting> {
     let mut out = Vec::new();
     for technique in &options.techniques {
+        let partitions = match technique {
+            Technique::Engine(engine, _) => vec![engine.cascades()],
+            _ => options.partitions.clone(),
+        };
         for resolution in &options.resolutions {
-            for partitions in &options.partitions {
+            for partitions in &partitions {
                 for filter in &options.filters {
                     out.push(Setting {
                         technique: *technique,

@@ -1,13 +1,21 @@
 //! Temporal stability: the camera walks; a pixel *shimmers* when its shadow state flips from one
 //! frame to the next while the truth there does not. Measured with and without texel snapping.
+//!
+//! Two counts, since the camera moves: **screen shimmer** compares the same pixel in consecutive
+//! frames, which see different surface points as the camera moves — a map whose texel grid moves
+//! with the camera keeps its jaggies still on screen and scores well; **surface shimmer** looks
+//! each visible point of a frame up in the previous frame's maps and in its own, and counts the
+//! points whose state flips — shadows crawling over static surfaces, which is what stabilisation
+//! (texel snapping, rotation-invariant fits) is for. The truth at a point does not change (the
+//! scene is static), so every surface flip is an error of one of the two frames.
 
 use glam::{DQuat, DVec3};
 use shadowlab_hull::ViewPose;
 use shadowlab_raster::NO_TRIANGLE;
 use shadowlab_scene::Scene;
 use shadowlab_shadow::{
-    Bias, Filter, FrameOptions, Lookup, PlanOptions, ShadowError, Technique, eye_pass,
-    render_shadows,
+    Bias, Filter, FrameOptions, LightShadow, Lookup, PlanOptions, ShadowError, Technique, eye_pass,
+    lit_at, render_shadows, scene_eye,
 };
 use shadowlab_trace::Bvh;
 
@@ -72,6 +80,10 @@ pub struct Stability {
     /// Shimmering pixels between each pair of consecutive frames (or why the technique is not
     /// defined for some frame).
     pub shimmer: Result<Vec<u64>, String>,
+    /// Surface shimmer between each pair of consecutive frames: the second frame's visible points
+    /// whose state in the first frame's maps differs from their state in its own; `None` where it
+    /// was not measured (given set-ups).
+    pub surface_shimmer: Option<Vec<u64>>,
 }
 
 /// Walks the camera over `frames` frames and counts each technique's shimmering pixels, with
@@ -91,13 +103,17 @@ pub fn temporal(
         techniques.iter().flat_map(|t| [(*t, 0), (*t, 1)]).collect();
     let mut states: Vec<Result<Vec<Vec<Option<bool>>>, String>> =
         vec![Ok(Vec::new()); variants.len()];
+    // Per variant, the previous frame's first light and the surface flips so far.
+    let mut previous: Vec<Option<LightShadow>> = vec![None; variants.len()];
+    let mut surface: Vec<Vec<u64>> = vec![Vec::new(); variants.len()];
     let mut truths = Vec::with_capacity(frames);
     for k in 0..frames {
         let mut moved = scene.clone();
         moved.camera.pose = pose_at(scene, k)?;
         let (eye, nearest_visible) = eye_pass(&moved)?;
         truths.push(exact_truth(&moved, &eye, &bvh)?.lit[0].clone());
-        for (state, (technique, snap)) in states.iter_mut().zip(&variants) {
+        let view = scene_eye(&moved);
+        for (v, (state, (technique, snap))) in states.iter_mut().zip(&variants).enumerate() {
             let Ok(history) = state else { continue };
             let options = FrameOptions {
                 plan: PlanOptions::new(*technique),
@@ -107,13 +123,30 @@ pub fn temporal(
                 snap_texels: *snap,
             };
             match render_shadows(&moved, &options, &eye, nearest_visible, Some(&bvh)) {
-                Ok(shadows) => history.push(
-                    eye.triangle
-                        .iter()
-                        .zip(&shadows.lit[0])
-                        .map(|(t, l)| (*t != NO_TRIANGLE).then_some(*l >= LIT_THRESHOLD))
-                        .collect(),
-                ),
+                Ok(mut shadows) => {
+                    let lit = &shadows.lit[0];
+                    if let Some(before) = &previous[v] {
+                        let then = lit_at(before, &view, &eye);
+                        let flips = eye
+                            .triangle
+                            .iter()
+                            .zip(lit.iter().zip(&then))
+                            .filter(|(t, (now, then))| {
+                                **t != NO_TRIANGLE
+                                    && (**now >= LIT_THRESHOLD) != (**then >= LIT_THRESHOLD)
+                            })
+                            .count();
+                        surface[v].push(flips as u64);
+                    }
+                    history.push(
+                        eye.triangle
+                            .iter()
+                            .zip(lit)
+                            .map(|(t, l)| (*t != NO_TRIANGLE).then_some(*l >= LIT_THRESHOLD))
+                            .collect(),
+                    );
+                    previous[v] = Some(shadows.lights.swap_remove(0));
+                }
                 Err(ShadowError::NotDefined { reason, .. }) => *state = Err(reason),
                 Err(e) => return Err(e.into()),
             }
@@ -123,9 +156,11 @@ pub fn temporal(
     Ok(states
         .into_iter()
         .zip(variants)
-        .map(|(state, (technique, snap_texels))| Stability {
+        .zip(surface)
+        .map(|((state, (technique, snap_texels)), surface)| Stability {
             technique,
             snap_texels,
+            surface_shimmer: state.is_ok().then_some(surface),
             shimmer: state.map(|history| {
                 (1..history.len())
                     .map(|k| shimmer(&history[k - 1], &history[k], &truths[k - 1], &truths[k]))
@@ -162,9 +197,10 @@ pub fn write(scene: &str, stability: &[Stability]) -> Vec<(String, Vec<u8>)> {
     use std::fmt::Write as _;
     let label = crate::report::technique_label;
     let scene_field = crate::report::csv_field(scene);
-    let mut csv = String::from("scene,technique,snap_texels,frame,shimmering_pixels\n");
+    let mut csv =
+        String::from("scene,technique,snap_texels,frame,shimmering_pixels,surface_shimmer\n");
     let mut md = format!(
-        "# Temporal stability: `{scene}`\n\nThe camera walks {STEP_FRACTION} of the scene's radius and turns 0.1° per frame, and walks back the same way after {WALK_OUT_FRAMES} frames. A pixel shimmers when its shadow state flips between consecutive frames while the exact truth there does not.\n\n| technique | snapping | mean shimmering pixels per frame | largest |\n|---|---|---:|---:|\n"
+        "# Temporal stability: `{scene}`\n\nThe camera walks {STEP_FRACTION} of the scene's radius and turns 0.1° per frame, and walks back the same way after {WALK_OUT_FRAMES} frames. A pixel shimmers (screen) when its shadow state flips between consecutive frames while the exact truth there does not. A surface point shimmers when its state in the previous frame's maps differs from its state in its own frame's maps: shadows crawling over still surfaces, which texel snapping is for.\n\n| technique | snapping | screen: mean shimmering pixels per frame | largest | surface: mean | largest |\n|---|---|---:|---:|---:|---:|\n"
     );
     for s in stability {
         let snapping = if s.snap_texels == 0 {
@@ -174,22 +210,28 @@ pub fn write(scene: &str, stability: &[Stability]) -> Vec<(String, Vec<u8>)> {
         };
         match &s.shimmer {
             Ok(counts) => {
+                let surface = s.surface_shimmer.as_deref();
                 for (k, c) in counts.iter().enumerate() {
+                    let on_surface = surface
+                        .and_then(|s| s.get(k))
+                        .map_or(String::new(), ToString::to_string);
                     writeln!(
                         csv,
-                        "{scene_field},{},{},{},{c}",
+                        "{scene_field},{},{},{},{c},{on_surface}",
                         label(s.technique),
                         s.snap_texels,
                         k + 1
                     )
                     .expect("writing to a string");
                 }
-                #[expect(clippy::cast_precision_loss, reason = "pixel counts")]
-                let mean = counts.iter().sum::<u64>() as f64 / counts.len().max(1) as f64;
-                let largest = counts.iter().max().copied().unwrap_or(0);
+                let (mean, largest) = mean_and_largest(counts);
+                let surface = surface.map_or("| |".into(), |s| {
+                    let (mean, largest) = mean_and_largest(s);
+                    format!("{mean:.1} | {largest}")
+                });
                 writeln!(
                     md,
-                    "| {} | {snapping} | {mean:.1} | {largest} |",
+                    "| {} | {snapping} | {mean:.1} | {largest} | {surface} |",
                     label(s.technique)
                 )
                 .expect("writing to a string");
@@ -197,7 +239,7 @@ pub fn write(scene: &str, stability: &[Stability]) -> Vec<(String, Vec<u8>)> {
             Err(reason) => {
                 writeln!(
                     md,
-                    "| {} | {snapping} | not defined: {reason} | |",
+                    "| {} | {snapping} | not defined: {reason} | | | |",
                     label(s.technique)
                 )
                 .expect("writing to a string");
@@ -208,6 +250,13 @@ pub fn write(scene: &str, stability: &[Stability]) -> Vec<(String, Vec<u8>)> {
         ("temporal.csv".into(), csv.into_bytes()),
         ("temporal.md".into(), md.into_bytes()),
     ]
+}
+
+/// The mean and the largest of per-frame counts (0 for none).
+fn mean_and_largest(counts: &[u64]) -> (f64, u64) {
+    #[expect(clippy::cast_precision_loss, reason = "pixel counts")]
+    let mean = counts.iter().sum::<u64>() as f64 / counts.len().max(1) as f64;
+    (mean, counts.iter().max().copied().unwrap_or(0))
 }
 
 #[cfg(test)]

@@ -60,8 +60,8 @@ pub use presets::{Engine, Stabilisation};
 pub use render::{
     FLAT_SCENE_THICKNESS, FLAT_SCENE_ULPS, Frame, FrameOptions, GivenDepths, LightMaps,
     LightShadow, MapSource, PartitionMap, PlanOptions, Shadows, Timings, eye_image, eye_pass,
-    plan_frame, plan_light, render_frame, render_shadows, scene_box, scene_eye, scene_input,
-    selection_of, shadows_of,
+    lit_at, plan_frame, plan_light, render_frame, render_shadows, scene_box, scene_eye,
+    scene_input, selection_of, shadows_of,
 };
 pub use selection::{
     Beyond, CullingSphere, Fade, FadeCurve, Selection, SelectionRule, Served, served,

@@ -113,6 +113,19 @@ impl Engine {
         EngineMap { side, depth_bits }
     }
 
+    /// How many cascades it gives a directional light (a spot light gets one map).
+    #[must_use]
+    pub fn cascades(self) -> usize {
+        match self {
+            Self::Bevy => BEVY_CASCADES.unsigned_abs() as usize,
+            Self::Godot => GODOT_SPLITS.len() + 1,
+            Self::Babylon => BABYLON_CASCADES,
+            Self::ThreeJs => THREEJS_CASCADES.unsigned_abs() as usize,
+            Self::Unreal => UNREAL_CASCADES as usize,
+            Self::Filament | Self::Unity => 1,
+        }
+    }
+
     /// How its cascades are chosen, blended and faded for a directional light.
     #[must_use]
     pub fn selection(self) -> Selection {

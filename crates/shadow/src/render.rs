@@ -79,6 +79,8 @@ pub struct LightShadow {
     pub light: LightSource,
     /// The partitions (one if unpartitioned), nearest first, each with its rendered map.
     pub maps: Vec<(Partition, ShadowMap)>,
+    /// How each map is read (`lookups[k]` for `maps[k]`).
+    pub lookups: Vec<Lookup>,
     /// Which map serves a visible point ([`served`]).
     pub selection: Selection,
 }
@@ -483,7 +485,6 @@ pub fn shadows_of(
     };
     let mut timings = Timings::default();
     let mut shadows = Vec::with_capacity(lights.len());
-    let mut lookups = Vec::with_capacity(lights.len());
     for light in lights {
         let start = Instant::now();
         let mut maps = Vec::with_capacity(light.partitions.len());
@@ -516,16 +517,15 @@ pub fn shadows_of(
         shadows.push(LightShadow {
             light: light.light,
             maps,
+            lookups: light_lookups,
             selection: light.selection,
         });
-        lookups.push(light_lookups);
     }
 
     let start = Instant::now();
     let lit = shadows
         .iter()
-        .zip(&lookups)
-        .map(|(shadow, lookups)| look_up(eye, &view, shadow, lookups))
+        .map(|shadow| lit_at(shadow, &view, eye))
         .collect();
     timings.lookup = start.elapsed();
     Ok(Shadows {
@@ -538,9 +538,13 @@ pub fn shadows_of(
 /// Rows of pixels looked up per parallel job; any size gives the same result.
 const LOOKUP_ROWS: usize = 8;
 
-/// How lit each pixel's visible point is by one light, each read with the lookup of the map that
-/// serves it (`lookups[k]` for `shadow.maps[k]`), blended and faded as the light's selection says.
-fn look_up(image: &EyeImage, eye: &Eye, shadow: &LightShadow, lookups: &[Lookup]) -> Vec<f64> {
+/// How lit each visible point of `image` (an eye pass seen by `eye`) is by one light's `shadow`:
+/// read with the lookup of the map that serves it, blended and faded as the light's selection
+/// says; 1 where nothing is visible. The shadows need not be this eye pass's own: a walk reads one
+/// frame's points in the previous frame's maps (the temporal study's surface shimmer).
+#[must_use]
+pub fn lit_at(shadow: &LightShadow, eye: &Eye, image: &EyeImage) -> Vec<f64> {
+    let lookups = &shadow.lookups;
     let width = image.width as usize;
     let mut lit = vec![1.0; image.triangle.len()];
     lit.par_chunks_mut(width * LOOKUP_ROWS)
