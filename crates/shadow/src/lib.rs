@@ -24,6 +24,7 @@
 //! scene-optimized map has no warp axis: its x and y follow the sides of the samples' rectangle.)
 //! Matrices act on column vectors and produce GL clip space (NDC depth in `[−1, 1]`).
 
+pub mod bias;
 mod error;
 pub mod faces;
 mod focus;
@@ -44,10 +45,11 @@ mod technique;
 pub mod view;
 mod warp;
 
+pub use bias::{Bias, DepthComparison};
 pub use error::ShadowError;
 pub use faces::FaceRegion;
 pub use input::{Eye, FocusPolicy, LightSource, PlanInput};
-pub use lookup::{Bias, DEFAULT_DISK_SEED, DEFAULT_MIN_VARIANCE, Filter, Lookup};
+pub use lookup::{DEFAULT_DISK_SEED, DEFAULT_MIN_VARIANCE, Filter, Lookup};
 pub use map::{MapOptions, ShadowMap};
 pub use plan::{Partition, Splits, plan, plan_partitions, serving};
 pub use render::{
