@@ -1,4 +1,5 @@
-//! Biases: how a receiver's depth is compared with the stored depth (CAD Table 1, slope scaling).
+//! Biases: how a receiver's depth is compared with the stored depth (CAD Table 1, slope scaling,
+//! receiver-plane depth bias).
 
 use std::fmt;
 
@@ -42,6 +43,19 @@ pub enum DepthComparison {
         /// The cap, in window-depth units.
         max_bias: f64,
     },
+    /// Receiver plane depth bias (Isidoro, "Shadow Mapping: GPU-based Tips and Techniques", GDC
+    /// 2006): the receiver's window depth is extrapolated on its own plane to each tap,
+    /// `z_tap = z + (∂z/∂u)·du + (∂z/∂v)·dv`, with `(∂z/∂u, ∂z/∂v)` the receiver plane's
+    /// window-depth gradient per texel (each component capped at ±1), and compared with the stored
+    /// depth plus `constant`: lit when `z_tap ≤ z_stored + constant`. `(du, dv)` is the tap's offset
+    /// from the point in texels: the kernel offset for PCF and the disk (Isidoro compares at the
+    /// tap position), and for the nearest filter the offset from the point to the centre of the
+    /// texel it reads (where the stored depth was sampled). A texel holding nothing (depth 1)
+    /// lights the receiver; a surface seen edge-on by the light gets no extrapolation.
+    ReceiverPlane {
+        /// The constant added to the stored depth, in window-depth units.
+        constant: f64,
+    },
 }
 
 impl DepthComparison {
@@ -55,7 +69,7 @@ impl DepthComparison {
     }
 
     /// The term's name in a spec: `none`, `constant`, `slope`, `second-depth`, `midpoint`,
-    /// `dual-depth`.
+    /// `dual-depth`, `receiver-plane`.
     #[must_use]
     pub fn key(&self) -> &'static str {
         match self {
@@ -65,18 +79,20 @@ impl DepthComparison {
             Self::SecondDepth => "second-depth",
             Self::Midpoint => "midpoint",
             Self::DualDepth { .. } => "dual-depth",
+            Self::ReceiverPlane { .. } => "receiver-plane",
         }
     }
 }
 
 impl fmt::Display for DepthComparison {
     /// The term [`Bias::parse`] reads back: `none`, `constant:O`, `slope:F,C`, `second-depth`,
-    /// `midpoint`, `dual-depth:MAX`.
+    /// `midpoint`, `dual-depth:MAX`, `receiver-plane:C`.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             Self::Constant { offset } => write!(f, "constant:{offset:?}"),
             Self::SlopeScaled { constant, slope } => write!(f, "slope:{slope:?},{constant:?}"),
             Self::DualDepth { max_bias } => write!(f, "dual-depth:{max_bias:?}"),
+            Self::ReceiverPlane { constant } => write!(f, "receiver-plane:{constant:?}"),
             Self::None | Self::SecondDepth | Self::Midpoint => f.write_str(self.key()),
         }
     }
@@ -128,7 +144,7 @@ impl fmt::Display for Bias {
 
 impl Bias {
     /// Parses `none`, `constant:OFFSET`, `slope:FACTOR[,CONSTANT]`, `second-depth`, `midpoint`,
-    /// `dual-depth:MAX` (depths in window units).
+    /// `dual-depth:MAX`, `receiver-plane[:CONSTANT]` (depths in window units).
     ///
     /// # Errors
     /// A message naming what is wrong and the accepted forms.
@@ -157,10 +173,14 @@ impl Bias {
             ("dual-depth", [max]) => DepthComparison::DualDepth {
                 max_bias: non_negative(*max, "the cap")?,
             },
+            ("receiver-plane", []) => DepthComparison::ReceiverPlane { constant: 0.0 },
+            ("receiver-plane", [constant]) => DepthComparison::ReceiverPlane {
+                constant: *constant,
+            },
             _ => {
                 return Err(format!(
                     "unknown bias {spec:?}; known: none, constant:OFFSET, slope:FACTOR[,CONSTANT], \
-                     second-depth, midpoint, dual-depth:MAX"
+                     second-depth, midpoint, dual-depth:MAX, receiver-plane[:CONSTANT]"
                 ));
             }
         };
@@ -168,12 +188,14 @@ impl Bias {
     }
 }
 
-/// A depth comparison ready for one lookup: the receiver's slope is found once per lookup, not
-/// once per tap.
+/// A depth comparison ready for one lookup: the receiver's slope (or plane gradient) is found once
+/// per lookup, not once per tap.
 pub(crate) struct Comparison {
     comparison: DepthComparison,
     /// The capped slope, for [`DepthComparison::SlopeScaled`].
     slope: f64,
+    /// The capped gradient per texel, for [`DepthComparison::ReceiverPlane`].
+    gradient: DVec2,
 }
 
 impl Comparison {
@@ -184,15 +206,34 @@ impl Comparison {
         world: DVec3,
         normal: DVec3,
     ) -> Self {
-        let slope = match comparison {
-            DepthComparison::SlopeScaled { .. } => depth_slope(map, world, normal),
-            _ => 0.0,
+        let (slope, gradient) = match comparison {
+            DepthComparison::SlopeScaled { .. } => (depth_slope(map, world, normal), DVec2::ZERO),
+            DepthComparison::ReceiverPlane { .. } => {
+                let gradient = depth_gradient(map, world, normal)
+                    .filter(|g| g.is_finite())
+                    .map_or(DVec2::ZERO, |g| {
+                        g.clamp(DVec2::splat(-MAX_SLOPE), DVec2::splat(MAX_SLOPE))
+                    });
+                (0.0, gradient)
+            }
+            _ => (0.0, DVec2::ZERO),
         };
-        Self { comparison, slope }
+        Self {
+            comparison,
+            slope,
+            gradient,
+        }
     }
 
-    /// Whether the receiver at window depth `receiver` is lit through texel `(i, j)`.
-    pub(crate) fn lit(&self, map: &ShadowMap, (i, j): (u32, u32), receiver: f64) -> bool {
+    /// Whether the receiver at window depth `receiver` is lit through texel `(i, j)`, read by a tap
+    /// `offset` texels from the point.
+    pub(crate) fn lit(
+        &self,
+        map: &ShadowMap,
+        (i, j): (u32, u32),
+        receiver: f64,
+        offset: DVec2,
+    ) -> bool {
         let z1 = map.depth(i, j);
         let second = || {
             let z2 = map.second_depth(i, j).unwrap_or(1.0);
@@ -208,8 +249,20 @@ impl Comparison {
             DepthComparison::DualDepth { max_bias } => {
                 table_1(DepthBias::DualDepth { max_bias }, z1, second())
             }
+            DepthComparison::ReceiverPlane { constant } => {
+                if z1 >= 1.0 {
+                    return true;
+                }
+                let at_tap = receiver + self.gradient.x * offset.x + self.gradient.y * offset.y;
+                return at_tap <= z1 + constant;
+            }
         };
         receiver <= limit
+    }
+
+    /// Whether the taps' offsets matter (only the receiver plane reads them).
+    pub(crate) fn reads_offsets(&self) -> bool {
+        matches!(self.comparison, DepthComparison::ReceiverPlane { .. })
     }
 }
 

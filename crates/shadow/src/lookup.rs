@@ -85,25 +85,37 @@ impl Lookup {
             return vsm(map, centre, receiver, size, min_variance);
         }
         let comparison = Comparison::new(self.bias.comparison, map, world, normal);
-        let test = |at: DVec2| match texel(map, at) {
-            Some(texel) if !comparison.lit(map, texel, receiver) => 0.0,
-            _ => 1.0,
+        let test = |offset: DVec2, nearest: bool| {
+            let Some(texel) = texel(map, centre + offset) else {
+                return 1.0;
+            };
+            // The nearest filter's tap is the centre of the texel it reads.
+            let offset = if nearest && comparison.reads_offsets() {
+                DVec2::new(f64::from(texel.0) + 0.5, f64::from(texel.1) + 0.5) - centre
+            } else {
+                offset
+            };
+            if comparison.lit(map, texel, receiver, offset) {
+                1.0
+            } else {
+                0.0
+            }
         };
         match self.filter {
-            Filter::Nearest => test(centre),
+            Filter::Nearest => test(DVec2::ZERO, true),
             Filter::Pcf { size } => {
                 let half = 0.5 * f64::from(size.saturating_sub(1));
                 let mut lit = 0.0;
                 for b in 0..size {
                     for a in 0..size {
                         let offset = DVec2::new(f64::from(a) - half, f64::from(b) - half);
-                        lit += test(centre + offset);
+                        lit += test(offset, false);
                     }
                 }
                 lit / f64::from(size * size)
             }
             Filter::Disk { .. } => {
-                let lit: f64 = self.taps.iter().map(|tap| test(centre + *tap)).sum();
+                let lit: f64 = self.taps.iter().map(|tap| test(*tap, false)).sum();
                 lit / self.taps.len() as f64
             }
             Filter::Vsm { size, min_variance } => vsm(map, centre, receiver, size, min_variance),

@@ -337,8 +337,14 @@ fn technique_and_bias_specs_round_trip() {
         Bias::new(DepthComparison::SecondDepth),
         Bias::new(DepthComparison::Midpoint),
         Bias::new(DepthComparison::DualDepth { max_bias: 2e-3 }),
+        Bias::new(DepthComparison::ReceiverPlane { constant: 1e-5 }),
+        Bias::new(DepthComparison::ReceiverPlane { constant: -0.0 }),
     ] {
         assert_eq!(Bias::parse(&bias.to_string()), Ok(bias), "{bias}");
     }
     assert_eq!(Bias::DEFAULT.to_string(), "slope:2.0,1e-5");
+    assert_eq!(
+        Bias::parse("receiver-plane"),
+        Ok(Bias::new(DepthComparison::ReceiverPlane { constant: 0.0 }))
+    );
 }
