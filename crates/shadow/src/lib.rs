@@ -45,7 +45,7 @@ mod technique;
 pub mod view;
 mod warp;
 
-pub use bias::{Bias, DepthComparison};
+pub use bias::{Bias, DepthComparison, LightTexel, NormalOffset};
 pub use error::ShadowError;
 pub use faces::FaceRegion;
 pub use input::{Eye, FocusPolicy, LightSource, PlanInput};

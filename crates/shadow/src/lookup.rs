@@ -34,8 +34,8 @@ pub enum Filter {
     },
     /// Variance shadow maps (CAD eq. 2 on shifted moments, formulas.md §4.2, §9.4): the first two
     /// moments of the `size × size` texels' depths about the centre texel's depth, and the
-    /// Chebyshev bound, with the variance raised to at least `min_variance`. No bias is applied (the
-    /// variance is VSM's bias).
+    /// Chebyshev bound, with the variance raised to at least `min_variance`. The bias's depth
+    /// comparison is not applied (the variance is VSM's bias); its receiver offsets are.
     Vsm {
         /// Side of the moment kernel, in texels (≥ 1).
         size: u32,
@@ -72,9 +72,11 @@ impl Lookup {
     }
 
     /// How lit the surface point `world` with unit normal `normal` is by `map`'s light: 1 lit, 0 in
-    /// shadow, fractions from filters. Points the map does not cover are lit.
+    /// shadow, fractions from filters. Points the map does not cover are lit. The bias's receiver
+    /// offsets move the point first ([`Bias::receiver`]); the filters then read the moved point.
     #[must_use]
     pub fn lit_fraction(&self, map: &ShadowMap, world: DVec3, normal: DVec3) -> f64 {
+        let world = self.bias.receiver(map, world, normal);
         let Some(window) = map.setup.mapping.window(world) else {
             return 1.0;
         };

@@ -1,4 +1,6 @@
 //! Integration tests of `shadowlab-shadow`, one binary (ripgrep's layout):
+//! - `biases`: the light's direction and texel size a map gives at a point, the engines' receiver
+//!   offsets measured against them, the bias spec's round trips and errors;
 //! - `closed_forms`: every technique's matrices, fitted to B = V, have the aliasing the closed forms
 //!   of `shadowlab-params` predict (LiSPSM eq. 3, CAD eq. 12 / GMNPR eq. 2, the logarithmic
 //!   constant, PSM shifted by Δ = LiSPSM with n = zn + Δ);
@@ -17,6 +19,7 @@
 //! - `snap`: texel snapping translates the window onto the grid and nothing else;
 //! - `support`: seeded configurations.
 
+mod biases;
 mod closed_forms;
 mod faces;
 mod given;
