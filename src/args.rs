@@ -97,7 +97,7 @@ fn technique_spec(text: &str) -> Result<Technique, String> {
     Technique::parse_spec(&value_not_flag(text)?)
 }
 
-/// A depth bias ([`Bias::parse`]).
+/// A bias ([`Bias::parse`]).
 fn bias_spec(text: &str) -> Result<Bias, String> {
     Bias::parse(&value_not_flag(text)?)
 }
@@ -169,7 +169,8 @@ pub(crate) struct AnalyzeArgs {
         allow_hyphen_values = true, value_parser = filter_in_list
     )]
     pub(crate) filters: Vec<Filter>,
-    /// Depth bias of every lookup. Default: slope:2,1e-5 (`Bias::DEFAULT`).
+    /// Bias of every lookup, terms joined by + (see `render --help`). Default: slope:2,1e-5
+    /// (`Bias::DEFAULT`).
     #[arg(long, allow_hyphen_values = true, value_parser = bias_spec)]
     pub(crate) bias: Option<Bias>,
     /// Also compare the exact truth with a 4096² uniform map's, as Chong and Gortler's truth was.
@@ -395,8 +396,13 @@ pub(crate) struct ShadowArgs {
     /// adaptive or adaptive:DELTA. Default: practical:0.5.
     #[arg(long, allow_hyphen_values = true, value_parser = split_scheme)]
     pub(crate) split_scheme: Option<Splits>,
-    /// Depth bias: none, constant:OFFSET, slope:FACTOR or slope:FACTOR,CONSTANT, second-depth, midpoint,
-    /// dual-depth:MAX (window-depth units). Default: slope:2,1e-5.
+    /// Bias: terms joined by +, at most one of each kind. A depth comparison (window-depth units):
+    /// none, constant:OFFSET, slope:FACTOR or slope:FACTOR,CONSTANT, second-depth, midpoint,
+    /// dual-depth:MAX, receiver-plane or receiver-plane:CONSTANT (Isidoro 2006). A receiver offset
+    /// along the normal, in texels of the map at the point: normal:K (Bevy), normal-sine:K
+    /// (Filament; its normalBias 1 is normal-sine:0.5), normal-lateral:K (Godot). light:D moves the
+    /// receiver D world units toward the light. E.g. slope:2,1e-5+normal:1.8+light:0.02. Default:
+    /// slope:2,1e-5.
     #[arg(long, allow_hyphen_values = true, value_parser = bias_spec)]
     pub(crate) bias: Option<Bias>,
     /// Filter: nearest, pcf:K, disk:TAPS,RADIUS or disk:TAPS,RADIUS,SEED, vsm:K or

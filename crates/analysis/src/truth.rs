@@ -36,7 +36,8 @@ use rayon::prelude::*;
 use shadowlab_raster::{DepthFormat, EyeImage, NO_TRIANGLE, Triangles};
 use shadowlab_scene::Scene;
 use shadowlab_shadow::{
-    Bias, Filter, LightSource, Lookup, MapOptions, PlanOptions, ShadowMap, Technique, plan_light,
+    Bias, DepthComparison, Filter, LightSource, Lookup, MapOptions, PlanOptions, ShadowMap,
+    Technique, plan_light,
 };
 use shadowlab_trace::{Bvh, Hit, Ray, offset_origin};
 
@@ -278,10 +279,10 @@ pub fn map_truth(scene: &Scene, eye: &EyeImage, resolution: u32) -> Result<Truth
     check_eye(eye, scene.mesh.triangle_count())?;
     let mesh = Triangles::new(scene.mesh.positions(), scene.mesh.triangles());
     let lookup = Lookup::new(
-        Bias::SlopeScaled {
+        Bias::new(DepthComparison::SlopeScaled {
             constant: MAP_TRUTH_CONSTANT_BIAS,
             slope: MAP_TRUTH_SLOPE_BIAS,
-        },
+        }),
         Filter::Nearest,
     );
     let options = MapOptions {

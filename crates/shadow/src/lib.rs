@@ -26,6 +26,7 @@
 //! scene-optimized map has no warp axis: its x and y follow the sides of the samples' rectangle.)
 //! Matrices act on column vectors and produce GL clip space (NDC depth in `[−1, 1]`).
 
+pub mod bias;
 pub mod cascades;
 mod error;
 pub mod faces;
@@ -50,10 +51,11 @@ mod technique;
 pub mod view;
 mod warp;
 
+pub use bias::{Bias, DepthComparison, LightTexel, NormalOffset};
 pub use error::ShadowError;
 pub use faces::FaceRegion;
 pub use input::{Eye, FocusPolicy, LightSource, PlanInput};
-pub use lookup::{Bias, DEFAULT_DISK_SEED, DEFAULT_MIN_VARIANCE, Filter, Lookup};
+pub use lookup::{DEFAULT_DISK_SEED, DEFAULT_MIN_VARIANCE, Filter, Lookup};
 pub use map::{MapOptions, ShadowMap};
 pub use plan::{Partition, Splits, plan, plan_partitions};
 pub use presets::{Engine, Stabilisation};

@@ -1,83 +1,13 @@
-//! Looking a point up in a shadow map: the depth-bias family (CAD Table 1, plus slope scaling),
-//! and the filters (nearest, PCF, a jittered disk, VSM).
+//! Looking a point up in a shadow map: the filters (nearest, PCF, a jittered disk, VSM), each
+//! reading the map with a bias ([`crate::bias`]).
 
 use std::f64::consts::TAU;
-use std::fmt;
 
-use glam::{DMat2, DVec2, DVec3};
-use shadowlab_params::bias::DepthBias;
+use glam::{DVec2, DVec3};
 use shadowlab_params::vsm::ShiftedMoments;
 
+use crate::bias::{Bias, Comparison};
 use crate::map::ShadowMap;
-
-/// How the stored depth is offset before comparing (a receiver is lit when its depth is at most
-/// the offset stored depth). Depths are GL window depths of the map, `[0, 1]`.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Bias {
-    /// No offset: the raw test, which acnes.
-    None,
-    /// Williams' constant offset, in window-depth units (CAD Table 1a).
-    Constant {
-        /// The offset.
-        offset: f64,
-    },
-    /// A constant plus `slope` times the receiver's depth slope per texel (the larger of
-    /// `|∂z/∂x|`, `|∂z/∂y|` over the map), as `glPolygonOffset(factor, units)` does.
-    SlopeScaled {
-        /// The constant part, in window-depth units.
-        constant: f64,
-        /// The factor on the slope.
-        slope: f64,
-    },
-    /// The second-nearest depth (Wang & Molnar, CAD Table 1b); needs a map with second depths.
-    SecondDepth,
-    /// The midpoint of the two nearest depths (Woo, CAD Table 1c); needs second depths.
-    Midpoint,
-    /// The midpoint capped at `max_bias` (CAD Table 1d); needs second depths.
-    DualDepth {
-        /// The cap, in window-depth units.
-        max_bias: f64,
-    },
-}
-
-impl Bias {
-    /// Whether the map must hold second-nearest depths.
-    #[must_use]
-    pub fn needs_second_depth(&self) -> bool {
-        matches!(
-            self,
-            Self::SecondDepth | Self::Midpoint | Self::DualDepth { .. }
-        )
-    }
-
-    /// The key used on the command line: `none`, `constant`, `slope`, `second-depth`, `midpoint`,
-    /// `dual-depth`.
-    #[must_use]
-    pub fn key(&self) -> &'static str {
-        match self {
-            Self::None => "none",
-            Self::Constant { .. } => "constant",
-            Self::SlopeScaled { .. } => "slope",
-            Self::SecondDepth => "second-depth",
-            Self::Midpoint => "midpoint",
-            Self::DualDepth { .. } => "dual-depth",
-        }
-    }
-}
-
-impl fmt::Display for Bias {
-    /// The spec [`Bias::parse`] reads back (numbers in Rust's shortest round-trip form, so the
-    /// parsed bias is the same bit for bit): `none`, `constant:O`, `slope:F,C`, `second-depth`,
-    /// `midpoint`, `dual-depth:MAX`.
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            Self::Constant { offset } => write!(f, "constant:{offset:?}"),
-            Self::SlopeScaled { constant, slope } => write!(f, "slope:{slope:?},{constant:?}"),
-            Self::DualDepth { max_bias } => write!(f, "dual-depth:{max_bias:?}"),
-            Self::None | Self::SecondDepth | Self::Midpoint => f.write_str(self.key()),
-        }
-    }
-}
 
 /// How many texels a lookup reads, and how it combines them.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -104,8 +34,8 @@ pub enum Filter {
     },
     /// Variance shadow maps (CAD eq. 2 on shifted moments, formulas.md §4.2, §9.4): the first two
     /// moments of the `size × size` texels' depths about the centre texel's depth, and the
-    /// Chebyshev bound, with the variance raised to at least `min_variance`. No bias is applied (the
-    /// variance is VSM's bias).
+    /// Chebyshev bound, with the variance raised to at least `min_variance`. The bias's depth
+    /// comparison is not applied (the variance is VSM's bias); its receiver offsets are.
     Vsm {
         /// Side of the moment kernel, in texels (≥ 1).
         size: u32,
@@ -114,11 +44,6 @@ pub enum Filter {
     },
 }
 
-/// A receiver's depth slope per texel is capped here: a surface seen edge-on by the light would
-/// otherwise get an unbounded bias.
-const MAX_SLOPE: f64 = 1.0;
-/// Step along the surface for the slope, relative to the point's distance from the origin (or 1).
-const SLOPE_STEP: f64 = 1e-5;
 /// 2⁶⁴/φ, SplitMix64's increment.
 const SPLITMIX_GAMMA: u64 = 0x9E37_79B9_7F4A_7C15;
 /// The fraction of the golden ratio, for the disk's angles.
@@ -147,103 +72,63 @@ impl Lookup {
     }
 
     /// How lit the surface point `world` with unit normal `normal` is by `map`'s light: 1 lit, 0 in
-    /// shadow, fractions from filters. Points the map does not cover are lit.
+    /// shadow, fractions from filters. Points the map does not cover are lit. The bias's receiver
+    /// offsets move the point first ([`Bias::receiver`]); the filters then read the moved point.
     #[must_use]
     pub fn lit_fraction(&self, map: &ShadowMap, world: DVec3, normal: DVec3) -> f64 {
+        let world = self.bias.receiver(map, world, normal);
         let Some(window) = map.setup.mapping.window(world) else {
             return 1.0;
         };
         let side = f64::from(map.resolution);
         let centre = DVec2::new(window.x * side, window.y * side);
         let receiver = window.z;
+        if let Filter::Vsm { size, min_variance } = self.filter {
+            return vsm(map, centre, receiver, size, min_variance);
+        }
+        let comparison = Comparison::new(self.bias.comparison, map, world, normal);
+        let test = |offset: DVec2, nearest: bool| {
+            let Some(texel) = texel(map, centre + offset) else {
+                return 1.0;
+            };
+            // The nearest filter's tap is the centre of the texel it reads.
+            let offset = if nearest && comparison.reads_offsets() {
+                DVec2::new(f64::from(texel.0) + 0.5, f64::from(texel.1) + 0.5) - centre
+            } else {
+                offset
+            };
+            if comparison.lit(map, texel, receiver, offset) {
+                1.0
+            } else {
+                0.0
+            }
+        };
         match self.filter {
-            Filter::Nearest => self.test(map, centre, receiver, world, normal),
+            Filter::Nearest => test(DVec2::ZERO, true),
             Filter::Pcf { size } => {
                 let half = 0.5 * f64::from(size.saturating_sub(1));
                 let mut lit = 0.0;
                 for b in 0..size {
                     for a in 0..size {
                         let offset = DVec2::new(f64::from(a) - half, f64::from(b) - half);
-                        lit += self.test(map, centre + offset, receiver, world, normal);
+                        lit += test(offset, false);
                     }
                 }
                 lit / f64::from(size * size)
             }
             Filter::Disk { .. } => {
-                let lit: f64 = self
-                    .taps
-                    .iter()
-                    .map(|tap| self.test(map, centre + *tap, receiver, world, normal))
-                    .sum();
+                let lit: f64 = self.taps.iter().map(|tap| test(*tap, false)).sum();
                 lit / self.taps.len() as f64
             }
             Filter::Vsm { size, min_variance } => vsm(map, centre, receiver, size, min_variance),
         }
     }
-
-    /// 1 if the receiver at texel-space position `at` is lit through that texel, else 0.
-    fn test(&self, map: &ShadowMap, at: DVec2, receiver: f64, world: DVec3, normal: DVec3) -> f64 {
-        let Some((i, j)) = texel(map, at) else {
-            return 1.0;
-        };
-        let z1 = map.depth(i, j);
-        let second = || {
-            let z2 = map.second_depth(i, j).unwrap_or(1.0);
-            // A second depth at the far plane means no second surface.
-            if z2 >= 1.0 { f64::INFINITY } else { z2.max(z1) }
-        };
-        let limit = match self.bias {
-            Bias::None => z1,
-            Bias::Constant { offset } => z1 + offset,
-            Bias::SlopeScaled { constant, slope } => {
-                z1 + constant + slope * depth_slope(map, world, normal)
-            }
-            Bias::SecondDepth => table_1(DepthBias::SecondDepth, z1, second()),
-            Bias::Midpoint => table_1(DepthBias::Midpoint, z1, second()),
-            Bias::DualDepth { max_bias } => {
-                table_1(DepthBias::DualDepth { max_bias }, z1, second())
-            }
-        };
-        if receiver <= limit { 1.0 } else { 0.0 }
-    }
-}
-
-/// CAD eq. 1 through `shadowlab-params`; an empty texel (z1 at the far plane) lights everything.
-fn table_1(bias: DepthBias, z1: f64, z2: f64) -> f64 {
-    bias.z_map(z1, z2).unwrap_or(f64::INFINITY)
 }
 
 /// The texel holding texel-space position `at` (`None` off the map).
 fn texel(map: &ShadowMap, at: DVec2) -> Option<(u32, u32)> {
     let side = f64::from(map.resolution);
     map.texel_of(DVec3::new(at.x / side, at.y / side, 0.0))
-}
-
-/// The receiver's window-depth slope per texel: the larger of `|∂z/∂x|`, `|∂z/∂y|` of the surface
-/// plane through `world` with `normal`, seen through the map; capped at [`MAX_SLOPE`].
-fn depth_slope(map: &ShadowMap, world: DVec3, normal: DVec3) -> f64 {
-    let (t1, t2) = normal.any_orthonormal_pair();
-    let step = SLOPE_STEP * world.length().max(1.0);
-    let side = f64::from(map.resolution);
-    let at = |p: DVec3| {
-        map.setup
-            .mapping
-            .window(p)
-            .map(|w| DVec3::new(w.x * side, w.y * side, w.z))
-    };
-    let (Some(p0), Some(p1), Some(p2)) = (at(world), at(world + t1 * step), at(world + t2 * step))
-    else {
-        return MAX_SLOPE;
-    };
-    let (d1, d2) = (p1 - p0, p2 - p0);
-    let jacobian = DMat2::from_cols(DVec2::new(d1.x, d1.y), DVec2::new(d2.x, d2.y));
-    let determinant = jacobian.determinant();
-    if determinant.abs() <= f64::EPSILON * d1.truncate().length() * d2.truncate().length() {
-        return MAX_SLOPE;
-    }
-    // (∂z/∂x, ∂z/∂y) J = (dz1, dz2).
-    let gradient = jacobian.transpose().inverse() * DVec2::new(d1.z, d2.z);
-    gradient.x.abs().max(gradient.y.abs()).min(MAX_SLOPE)
 }
 
 /// VSM's lit fraction from the moments of the `size × size` texels around `centre`.
@@ -298,7 +183,7 @@ fn disk_taps(taps: u32, radius: f64, seed: u64) -> Vec<DVec2> {
 }
 
 /// The numbers after `name:` in a spec like `slope:2,1e-5`, at most `max` of them.
-fn spec_numbers(spec: &str, max: usize) -> Result<(&str, Vec<f64>), String> {
+pub(crate) fn spec_numbers(spec: &str, max: usize) -> Result<(&str, Vec<f64>), String> {
     let (name, rest) = spec.split_once(':').unwrap_or((spec, ""));
     let numbers: Vec<f64> = rest
         .split(',')
@@ -317,50 +202,6 @@ fn spec_numbers(spec: &str, max: usize) -> Result<(&str, Vec<f64>), String> {
         ));
     }
     Ok((name, numbers))
-}
-
-impl Bias {
-    /// The default of `shadowlab render`: slope-scaled, factor 2 and constant 1e-5 (window depth).
-    pub const DEFAULT: Self = Self::SlopeScaled {
-        constant: 1e-5,
-        slope: 2.0,
-    };
-
-    /// Parses `none`, `constant:OFFSET`, `slope:FACTOR[,CONSTANT]`, `second-depth`, `midpoint`,
-    /// `dual-depth:MAX` (depths in window units).
-    ///
-    /// # Errors
-    /// A message naming what is wrong and the accepted forms.
-    pub fn parse(spec: &str) -> Result<Self, String> {
-        let (name, n) = spec_numbers(spec, 2)?;
-        let non_negative = |v: f64, what: &str| {
-            if v >= 0.0 {
-                Ok(v)
-            } else {
-                Err(format!("{what} in {spec:?} must be at least 0"))
-            }
-        };
-        match (name, n.as_slice()) {
-            ("none", []) => Ok(Self::None),
-            ("constant", [offset]) => Ok(Self::Constant { offset: *offset }),
-            ("slope", [slope]) => Ok(Self::SlopeScaled {
-                constant: 0.0,
-                slope: non_negative(*slope, "the factor")?,
-            }),
-            ("slope", [slope, constant]) => Ok(Self::SlopeScaled {
-                constant: *constant,
-                slope: non_negative(*slope, "the factor")?,
-            }),
-            ("second-depth", []) => Ok(Self::SecondDepth),
-            ("midpoint", []) => Ok(Self::Midpoint),
-            ("dual-depth", [max]) => Ok(Self::DualDepth {
-                max_bias: non_negative(*max, "the cap")?,
-            }),
-            _ => Err(format!(
-                "unknown bias {spec:?}; known: none, constant:OFFSET, slope:FACTOR[,CONSTANT], second-depth, midpoint, dual-depth:MAX"
-            )),
-        }
-    }
 }
 
 impl Filter {

@@ -129,11 +129,12 @@ use shadowlab_raster::{
 };
 use shadowlab_scene::Scene;
 
+use crate::bias::Bias;
 use crate::error::ShadowError;
 use crate::focus::focus_polyhedron;
 use crate::frame::LightFrame;
 use crate::input::{LightSource, PlanInput};
-use crate::lookup::{Bias, Filter, Lookup};
+use crate::lookup::{Filter, Lookup};
 use crate::map::{MapOptions, ShadowMap};
 use crate::plan::{Partition, Splits, partition_inputs};
 use crate::setup::{LightSetup, ShadowMapping};

@@ -19,8 +19,8 @@ use shadowlab_raster::image_out::{depth_exr, depth_npy, depth_png16};
 use shadowlab_scene::Scene;
 use shadowlab_shadow::optimal::OptimalOptions;
 use shadowlab_shadow::{
-    Bias, Filter, FocusPolicy, FrameOptions, Lookup, PlanOptions, ShadowMap, Splits, StepDirection,
-    Technique, WarpChoice, eye_pass, render_shadows,
+    Bias, DepthComparison, Filter, FocusPolicy, FrameOptions, Lookup, PlanOptions, ShadowMap,
+    Splits, StepDirection, Technique, WarpChoice, eye_pass, render_shadows,
 };
 
 use crate::setup_file::small_outdoor;
@@ -144,7 +144,7 @@ fn a_written_set_up_measures_what_analyzing_the_technique_measures() {
             ..Case::new(Technique::Lispsm(WarpChoice::PAPER))
         },
         Case {
-            bias: Bias::Midpoint,
+            bias: Bias::new(DepthComparison::Midpoint),
             filter: Filter::Disk {
                 taps: 8,
                 radius: 1.5,
@@ -296,7 +296,7 @@ fn maps_shadowlab_wrote_measure_what_rendering_measures() {
         ),
         (
             Case {
-                bias: Bias::Midpoint,
+                bias: Bias::new(DepthComparison::Midpoint),
                 ..Case::new(Technique::Psm)
             },
             "npy",
@@ -305,7 +305,7 @@ fn maps_shadowlab_wrote_measure_what_rendering_measures() {
         (
             Case {
                 format: DepthFormat::Unorm16,
-                bias: Bias::Constant { offset: 2e-4 },
+                bias: Bias::new(DepthComparison::Constant { offset: 2e-4 }),
                 ..Case::new(Technique::Uniform)
             },
             "png",
@@ -332,7 +332,7 @@ fn a_perturbed_map_misclassifies_as_its_rule_predicts() {
     let scene = small_outdoor();
     let offset = 1e-4;
     let case = Case {
-        bias: Bias::Constant { offset },
+        bias: Bias::new(DepthComparison::Constant { offset }),
         ..Case::new(Technique::Lispsm(WarpChoice::PAPER))
     };
     let file = setup_for(&scene, &case.frame_options()).unwrap();

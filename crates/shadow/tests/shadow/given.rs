@@ -6,9 +6,9 @@ use glam::DVec3;
 use shadowlab_raster::{DepthFormat, NO_TRIANGLE, RasterError};
 use shadowlab_scene::{Scene, builtin_scene};
 use shadowlab_shadow::{
-    Bias, Filter, FrameOptions, GivenDepths, LightMaps, LightSource, Lookup, MapSource,
-    PartitionMap, PlanOptions, Selection, ShadowError, ShadowMap, Splits, Technique, eye_pass,
-    plan_frame, render_shadows, scene_eye, served, shadows_of,
+    Bias, DepthComparison, Filter, FrameOptions, GivenDepths, LightMaps, LightSource, Lookup,
+    MapSource, PartitionMap, PlanOptions, Selection, ShadowError, ShadowMap, Splits, Technique,
+    eye_pass, plan_frame, render_shadows, scene_eye, served, shadows_of,
 };
 
 /// `outdoor` at a small eye image.
@@ -110,7 +110,12 @@ fn each_partition_is_read_with_its_own_lookup() {
     let options = options(2);
     let (eye, nearest) = eye_pass(&scene).unwrap();
     let planned = plan_frame(&scene, &options, nearest, Some(&eye)).unwrap();
-    let offset = |offset: f64| Lookup::new(Bias::Constant { offset }, Filter::Nearest);
+    let offset = |offset: f64| {
+        Lookup::new(
+            Bias::new(DepthComparison::Constant { offset }),
+            Filter::Nearest,
+        )
+    };
     let lights = scene
         .lights
         .iter()

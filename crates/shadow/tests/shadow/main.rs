@@ -1,4 +1,6 @@
 //! Integration tests of `shadowlab-shadow`, one binary (ripgrep's layout):
+//! - `biases`: the light's direction and texel size a map gives at a point, the engines' receiver
+//!   offsets measured against them, the bias spec's round trips and errors;
 //! - `cascades`: engines' cascades: rotation-invariant fits, snapping in whole texels, selection
 //!   by depth and by containment, blending, fades, every preset on every built-in scene;
 //! - `closed_forms`: every technique's matrices, fitted to B = V, have the aliasing the closed forms
@@ -21,6 +23,7 @@
 //! - `snap`: texel snapping translates the window onto the grid and nothing else;
 //! - `support`: seeded configurations.
 
+mod biases;
 mod cascades;
 mod closed_forms;
 mod faces;

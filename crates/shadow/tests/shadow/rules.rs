@@ -324,21 +324,27 @@ fn technique_and_bias_specs_round_trip() {
             ..
         })
     ));
-    use shadowlab_shadow::Bias;
+    use shadowlab_shadow::{Bias, DepthComparison};
     for bias in [
-        Bias::None,
-        Bias::Constant { offset: 0.1 + 0.2 },
-        Bias::Constant { offset: -1e-300 },
+        Bias::NONE,
+        Bias::new(DepthComparison::Constant { offset: 0.1 + 0.2 }),
+        Bias::new(DepthComparison::Constant { offset: -1e-300 }),
         Bias::DEFAULT,
-        Bias::SlopeScaled {
+        Bias::new(DepthComparison::SlopeScaled {
             constant: 0.0,
             slope: 1.0 / 3.0,
-        },
-        Bias::SecondDepth,
-        Bias::Midpoint,
-        Bias::DualDepth { max_bias: 2e-3 },
+        }),
+        Bias::new(DepthComparison::SecondDepth),
+        Bias::new(DepthComparison::Midpoint),
+        Bias::new(DepthComparison::DualDepth { max_bias: 2e-3 }),
+        Bias::new(DepthComparison::ReceiverPlane { constant: 1e-5 }),
+        Bias::new(DepthComparison::ReceiverPlane { constant: -0.0 }),
     ] {
         assert_eq!(Bias::parse(&bias.to_string()), Ok(bias), "{bias}");
     }
     assert_eq!(Bias::DEFAULT.to_string(), "slope:2.0,1e-5");
+    assert_eq!(
+        Bias::parse("receiver-plane"),
+        Ok(Bias::new(DepthComparison::ReceiverPlane { constant: 0.0 }))
+    );
 }
