@@ -400,7 +400,8 @@ pub(crate) struct ShadowArgs {
     /// none, constant:OFFSET, slope:FACTOR or slope:FACTOR,CONSTANT, second-depth, midpoint,
     /// dual-depth:MAX, receiver-plane or receiver-plane:CONSTANT (Isidoro 2006). A receiver offset
     /// along the normal, in texels of the map at the point: normal:K (Bevy), normal-sine:K
-    /// (Filament; its normalBias 1 is normal-sine:0.5), normal-lateral:K (Godot). light:D moves the
+    /// (Filament; its normalBias 1 is normal-sine:0.5), normal-lateral:K (Godot),
+    /// normal-versine:K (Unity's inset, on the receiver). light:D moves the
     /// receiver D world units toward the light. E.g. slope:2,1e-5+normal:1.8+light:0.02. Default:
     /// slope:2,1e-5.
     #[arg(long, allow_hyphen_values = true, value_parser = bias_spec)]

@@ -148,16 +148,25 @@ pub enum NormalOffset {
         /// The offset in texels.
         texels: f64,
     },
+    /// `p' = p + texels·t·(1 − sat(n·L))·n`: Unity URP, `Shadows.hlsl` `ApplyShadowBias`, which
+    /// insets the *caster* by this much along −n (`normalBias` 1 texel by default); shadowlab moves
+    /// the receiver out along +n instead (its receiver-side equivalent, named **versine offset**:
+    /// 1 − cos θ is θ's versine). Spec `normal-versine:K`.
+    Versine {
+        /// The offset in texels.
+        texels: f64,
+    },
 }
 
 impl NormalOffset {
-    /// The term's name in a spec: `normal`, `normal-sine`, `normal-lateral`.
+    /// The term's name in a spec: `normal`, `normal-sine`, `normal-lateral`, `normal-versine`.
     #[must_use]
     pub fn key(&self) -> &'static str {
         match self {
             Self::Plain { .. } => "normal",
             Self::Sine { .. } => "normal-sine",
             Self::Lateral { .. } => "normal-lateral",
+            Self::Versine { .. } => "normal-versine",
         }
     }
 
@@ -165,7 +174,10 @@ impl NormalOffset {
     #[must_use]
     pub fn texels(&self) -> f64 {
         match *self {
-            Self::Plain { texels } | Self::Sine { texels } | Self::Lateral { texels } => texels,
+            Self::Plain { texels }
+            | Self::Sine { texels }
+            | Self::Lateral { texels }
+            | Self::Versine { texels } => texels,
         }
     }
 
@@ -185,12 +197,16 @@ impl NormalOffset {
                 let offset = base * length;
                 offset - toward_light * toward_light.dot(offset)
             }
+            Self::Versine { .. } => {
+                normal * (length * (1.0 - normal.dot(toward_light).clamp(0.0, 1.0)))
+            }
         }
     }
 }
 
 impl fmt::Display for NormalOffset {
-    /// The term [`Bias::parse`] reads back: `normal:K`, `normal-sine:K`, `normal-lateral:K`.
+    /// The term [`Bias::parse`] reads back: `normal:K`, `normal-sine:K`, `normal-lateral:K`,
+    /// `normal-versine:K`.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(f, "{}:{:?}", self.key(), self.texels())
     }
@@ -371,7 +387,8 @@ impl fmt::Display for Bias {
 /// The forms [`Bias::parse`] accepts, for its messages.
 const KNOWN_TERMS: &str = "none, constant:OFFSET, slope:FACTOR[,CONSTANT], second-depth, \
     midpoint, dual-depth:MAX, receiver-plane[:CONSTANT] (depth comparisons, window-depth units); \
-    normal:TEXELS, normal-sine:TEXELS, normal-lateral:TEXELS (normal offsets); light:DISTANCE \
+    normal:TEXELS, normal-sine:TEXELS, normal-lateral:TEXELS, normal-versine:TEXELS (normal \
+    offsets); light:DISTANCE \
     (world units); joined by +, at most one of each kind";
 
 /// The kinds of term, at most one each in a spec.
@@ -387,7 +404,7 @@ impl Kind {
         match name {
             "none" | "constant" | "slope" | "second-depth" | "midpoint" | "dual-depth"
             | "receiver-plane" => Some(Self::Comparison),
-            "normal" | "normal-sine" | "normal-lateral" => Some(Self::Normal),
+            "normal" | "normal-sine" | "normal-lateral" | "normal-versine" => Some(Self::Normal),
             "light" => Some(Self::Light),
             _ => None,
         }
@@ -510,6 +527,9 @@ fn parse_term(term: &str) -> Result<Term, String> {
             texels: non_negative(*k, "the normal offset")?,
         })),
         ("normal-lateral", [k]) => Ok(Term::Normal(NormalOffset::Lateral {
+            texels: non_negative(*k, "the normal offset")?,
+        })),
+        ("normal-versine", [k]) => Ok(Term::Normal(NormalOffset::Versine {
             texels: non_negative(*k, "the normal offset")?,
         })),
         ("light", [d]) => Ok(Term::Light(non_negative(*d, "the distance")?)),

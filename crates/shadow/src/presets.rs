@@ -18,11 +18,13 @@ use std::fmt;
 use shadowlab_params::DepthRange;
 use shadowlab_params::splits::SplitScheme;
 
+use crate::bias::{Bias, DepthComparison, NormalOffset};
 use crate::cascades::{self, CascadeFit, CascadeSlice, Snap};
 use crate::error::ShadowError;
 use crate::input::{LightSource, PlanInput};
 use crate::plan::{Partition, plan, plan_partitions_at};
 use crate::selection::{Beyond, Fade, FadeCurve, Selection, SelectionRule};
+use crate::setup::ShadowMapping;
 use crate::technique::{ProductionVariant, Technique, WarpChoice};
 
 /// An engine whose default directional shadows a preset reproduces.
@@ -262,6 +264,63 @@ impl Engine {
         })
     }
 
+    /// Its default bias for the map of `partition` (one of its cascades, `resolution` texels a
+    /// side), as the receiver-side terms of [`Bias`] write it; `t` is the cascade's texel, its
+    /// window's width over `resolution`:
+    /// - Bevy (`sample_cascade`): `normal:1.8+light:0.02` — `shadow_normal_bias` 1.8 texels along
+    ///   n, `shadow_depth_bias` 0.02 world units toward the light; no depth-comparison offset.
+    /// - Filament (`ShadowOptions`): polygon offset slope 2.0, constant 0.5 units of its DEPTH16 map
+    ///   (0.5/65535 in window depth) → `slope:2,7.6e-6`; `normalBias` 1.0 → `normal-sine:0.5`;
+    ///   `constantBias` 1 mm "by which shadows are moved away from the occluders" → `light:0.001`.
+    /// - Godot (`update_light_buffers`, `BIAS_FUNC`): `normal-lateral:2` (`shadow_normal_bias` 2);
+    ///   toward the light `shadow_bias/100 · (2r + pancake) · 2.0` = `0.001·(2r + 20)·2` with r the
+    ///   cascade's sphere radius (its border included) and 2.0 the Soft Low filter's radius scale.
+    /// - Babylon (`bias` 0.00005 added to the caster's NDC z): `constant:2.5e-5` (half of it in
+    ///   window depth, on the receiver's side: the same test); `normalBias` 0.
+    /// - three.js CSM (`shadowBias` 1e−6 added to the receiver's depth, `shadowCoord.z += bias`):
+    ///   `constant:-1e-6` — a receiver pushed away from the light, which acnes.
+    /// - Unity URP (`GetShadowBias`, `ApplyShadowBias`): caster pushed 1 texel away from the light
+    ///   and inset 1 texel × (1 − n·L), plus hardware depth bias 1 unit (16-bit: 1/65535) and slope
+    ///   2.5 → `slope:2.5,1.5e-5+normal-versine:1+light:t`, the caster's offsets applied to the
+    ///   receiver (shadowlab's receiver-side equivalent, named in [`NormalOffset::Versine`]).
+    /// - Unreal: its bias units are not public (`r.Shadow.CSMDepthBias` 10, slope 3, receiver 0.9
+    ///   unverified): shadowlab's default, [`Bias::DEFAULT`], named so in the docs.
+    #[must_use]
+    pub fn bias(self, partition: &Partition, resolution: u32) -> Bias {
+        let texel = match partition.setup.mapping {
+            ShadowMapping::Projective { projection, .. } => {
+                2.0 / projection.x_axis.x.abs() / f64::from(resolution)
+            }
+            ShadowMapping::Logarithmic(_) => 0.0,
+        };
+        let slope = |slope, units: f64| {
+            Bias::new(DepthComparison::SlopeScaled {
+                constant: units / SIXTEEN_BIT_UNITS,
+                slope,
+            })
+        };
+        match self {
+            Self::Bevy => Bias::NONE
+                .with_normal(NormalOffset::Plain { texels: 1.8 })
+                .with_toward_light(0.02),
+            Self::Filament => slope(2.0, 0.5)
+                .with_normal(NormalOffset::Sine { texels: 0.5 })
+                .with_toward_light(0.001),
+            Self::Godot => {
+                let radius = partition.sphere.map_or(0.0, |s| s.radius);
+                Bias::NONE
+                    .with_normal(NormalOffset::Lateral { texels: 2.0 })
+                    .with_toward_light(0.1 / 100.0 * (2.0 * radius + GODOT_PANCAKE) * 2.0)
+            }
+            Self::Babylon => Bias::new(DepthComparison::Constant { offset: 2.5e-5 }),
+            Self::ThreeJs => Bias::new(DepthComparison::Constant { offset: -1e-6 }),
+            Self::Unity => slope(2.5, 1.0)
+                .with_normal(NormalOffset::Versine { texels: 1.0 })
+                .with_toward_light(texel),
+            Self::Unreal => Bias::DEFAULT,
+        }
+    }
+
     /// Plans `input`'s light as the engine does, labelled `technique`, for maps of `resolution`
     /// texels: a directional light's cascades ([`crate::cascades`], or for Filament its LiSPSM map
     /// of each cascade with Filament's parameter), a spot light's one map fitted as `uniform`.
@@ -344,6 +403,11 @@ fn bevy_slices() -> Vec<CascadeSlice> {
 
 /// Godot's `directional_shadow_max_distance` default, 100.
 const GODOT_MAX_DISTANCE: f64 = 100.0;
+/// Godot's `pancake_size` default, 20: how far its light frustum reaches toward the light beyond
+/// the sphere.
+const GODOT_PANCAKE: f64 = 20.0;
+/// The steps of a 16-bit depth buffer, GL's `r` for polygon-offset units.
+const SIXTEEN_BIT_UNITS: f64 = 65_535.0;
 /// Godot's `directional_shadow_split_1/2/3`: 0.1, 0.2, 0.5 of the range.
 const GODOT_SPLITS: [f64; 3] = [0.1, 0.2, 0.5];
 

@@ -383,9 +383,16 @@ pub fn render_shadows(
             partitions: partitions
                 .into_iter()
                 .map(|partition| PartitionMap {
+                    lookup: match options.plan.technique {
+                        // An engine's preset reads its maps with its own bias.
+                        Technique::Engine(engine, _) => Lookup::new(
+                            engine.bias(&partition, options.resolution),
+                            options.lookup.filter,
+                        ),
+                        _ => options.lookup.clone(),
+                    },
                     partition,
                     source: MapSource::Render(map_options),
-                    lookup: options.lookup.clone(),
                 })
                 .collect(),
         })

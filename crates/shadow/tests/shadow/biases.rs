@@ -238,7 +238,8 @@ fn normal_and_light_offsets_move_the_receiver_by_their_lengths() {
 
 /// Claim: `normal-sine:K` is K·t·sin θ along n: zero where n ∥ L, K·t where n ⟂ L or faces away;
 /// `normal-lateral:K` is perpendicular to L, K·t·sin θ long on faces toward the light, and scaled by
-/// (1 + n·L) on faces away (Godot's `BIAS_FUNC`).
+/// (1 + n·L) on faces away (Godot's `BIAS_FUNC`); `normal-versine:K` is K·t·(1 − cos θ) along n,
+/// zero where n ∥ L and K·t on faces away (Unity's inset, on the receiver).
 #[test]
 fn the_angle_scaled_normal_offsets_follow_their_engines() {
     let (map, toward) = orthographic(DVec3::new(-12.0, 3.0, 9.0));
@@ -246,7 +247,9 @@ fn the_angle_scaled_normal_offsets_follow_their_engines() {
     let k = 2.0;
     let sine = Bias::NONE.with_normal(NormalOffset::Sine { texels: k });
     let lateral = Bias::NONE.with_normal(NormalOffset::Lateral { texels: k });
+    let versine = Bias::NONE.with_normal(NormalOffset::Versine { texels: k });
     for p in points() {
+        assert!((versine.receiver(&map, p, toward) - p).length() <= 1e-7 * t);
         assert!(
             (sine.receiver(&map, p, toward) - p).length() <= 1e-7 * t,
             "n ∥ L moves {}",
@@ -272,6 +275,9 @@ fn the_angle_scaled_normal_offsets_follow_their_engines() {
             let moved = sine.receiver(&map, p, n) - p;
             let expected = if cos > 0.0 { sin } else { 1.0 };
             assert_close(moved, n * (k * t * expected), 1e-8, "normal-sine");
+            let moved = versine.receiver(&map, p, n) - p;
+            let expected = 1.0 - cos.max(0.0);
+            assert_close(moved, n * (k * t * expected), 1e-8, "normal-versine");
             let moved = lateral.receiver(&map, p, n) - p;
             assert!(
                 moved.dot(toward).abs() <= 1e-9 * k * t,
@@ -342,6 +348,7 @@ fn every_bias_spec_round_trips() {
         Some(NormalOffset::Plain { texels: 1.8 }),
         Some(NormalOffset::Sine { texels: 0.5 }),
         Some(NormalOffset::Lateral { texels: 0.1 + 0.2 }),
+        Some(NormalOffset::Versine { texels: 1.0 }),
         Some(NormalOffset::Plain { texels: 0.0 }),
     ];
     let lights = [None, Some(0.02), Some(1e-300), Some(0.0)];
@@ -371,7 +378,8 @@ fn every_bias_spec_round_trips() {
             }
         }
     }
-    assert_eq!(count, 11 * 5 * 4);
+    assert_eq!(count, comparisons().len() * normals.len() * lights.len());
+    assert_eq!(count, 11 * 6 * 4);
     assert_eq!(Bias::DEFAULT.to_string(), "slope:2.0,1e-5");
     for (spec, expected, canonical) in [
         (

@@ -327,3 +327,29 @@ fn every_preset_and_sdsm_variant_renders_every_builtin_scene() {
         }
     }
 }
+
+/// Claim: each preset reads its maps with its engine's bias: the terms its doc comment derives,
+/// per cascade where the engine scales them by the cascade (Godot's sphere, Unity's texel).
+#[test]
+fn presets_read_their_maps_with_their_engines_bias() {
+    let planned_input = input(DVec3::new(3.0, 5.0, 7.0), 0.4);
+    let spec = |engine: Engine, k: usize| {
+        let parts = planned(engine, Stabilisation::Engine, &planned_input);
+        engine.bias(&parts[k], RESOLUTION).to_string()
+    };
+    assert_eq!(spec(Engine::Bevy, 2), "normal:1.8+light:0.02");
+    assert_eq!(spec(Engine::Babylon, 0), "constant:2.5e-5");
+    assert_eq!(spec(Engine::ThreeJs, 1), "constant:-1e-6");
+    for k in 0..4 {
+        let parts = planned(Engine::Godot, Stabilisation::Engine, &planned_input);
+        let radius = parts[k].sphere.unwrap().radius;
+        let bias = Engine::Godot.bias(&parts[k], RESOLUTION);
+        let light = bias.toward_light.unwrap();
+        assert!((light - 0.001 * (2.0 * radius + 20.0) * 2.0).abs() < 1e-12);
+        assert_eq!(bias.normal.unwrap().to_string(), "normal-lateral:2.0");
+    }
+    let unity = planned(Engine::Unity, Stabilisation::Engine, &planned_input);
+    let (width, _) = window_size(&unity[0].setup);
+    let bias = Engine::Unity.bias(&unity[0], RESOLUTION);
+    assert!((bias.toward_light.unwrap() - width / f64::from(RESOLUTION)).abs() < 1e-12);
+}
