@@ -19,7 +19,6 @@ use std::fmt;
 use glam::{DMat2, DVec2, DVec3};
 use shadowlab_params::bias::DepthBias;
 
-use crate::lookup::spec_numbers;
 use crate::map::ShadowMap;
 
 /// A receiver's depth slope per texel is capped here: a surface seen edge-on by the light would
@@ -654,4 +653,26 @@ fn depth_gradient(map: &ShadowMap, world: DVec3, normal: DVec3) -> Option<DVec2>
     }
     // (∂z/∂x, ∂z/∂y) J = (dz1, dz2).
     Some(jacobian.transpose().inverse() * DVec2::new(d1.z, d2.z))
+}
+
+/// The numbers after `name:` in a spec like `slope:2,1e-5`, at most `max` of them.
+pub(crate) fn spec_numbers(spec: &str, max: usize) -> Result<(&str, Vec<f64>), String> {
+    let (name, rest) = spec.split_once(':').unwrap_or((spec, ""));
+    let numbers: Vec<f64> = rest
+        .split(',')
+        .filter(|s| !s.is_empty())
+        .map(|s| {
+            s.trim()
+                .parse::<f64>()
+                .ok()
+                .filter(|v| v.is_finite())
+                .ok_or_else(|| format!("{s:?} in {spec:?} is not a finite number"))
+        })
+        .collect::<Result<_, _>>()?;
+    if numbers.len() > max {
+        return Err(format!(
+            "{spec:?} takes at most {max} numbers after {name:?}"
+        ));
+    }
+    Ok((name, numbers))
 }

@@ -21,7 +21,7 @@ use shadowlab_hull::{Frustum, Perspective, ViewPose};
 
 use crate::error::ShadowError;
 use crate::input::{LightSource, PlanInput};
-use crate::selection::CullingSphere;
+use crate::partition::CullingSphere;
 use crate::setup::{LightSetup, ShadowMapping};
 use crate::technique::Technique;
 
@@ -121,7 +121,7 @@ pub fn plan(
     slices: &[CascadeSlice],
     (fit, snap): (CascadeFit, Snap),
     resolution: u32,
-) -> Result<Vec<crate::plan::Partition>, ShadowError> {
+) -> Result<Vec<crate::partition::Partition>, ShadowError> {
     let LightSource::Directional { to_light } = input.light else {
         return Err(ShadowError::NotDefined {
             technique: technique.key(),
@@ -151,7 +151,7 @@ pub fn plan(
             let slice_near = distances.into_iter().fold(f64::INFINITY, f64::min);
             let depth_near = slice_near.min(scene_nearest);
             let projection = orthographic(window, depth_near, slice_far);
-            Ok(crate::plan::Partition {
+            Ok(crate::partition::Partition {
                 near: cascade.select.0,
                 far: cascade.select.1,
                 face: None,

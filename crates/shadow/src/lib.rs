@@ -34,11 +34,13 @@ mod focus;
 mod frame;
 mod input;
 pub mod logarithmic;
+mod logarithmic_map;
 mod lookup;
 mod map;
 pub mod measure;
 pub mod optimal;
 mod parameter;
+mod partition;
 mod plan;
 pub mod presets;
 pub mod psm;
@@ -57,19 +59,18 @@ pub use faces::FaceRegion;
 pub use input::{Eye, FocusPolicy, LightSource, PlanInput};
 pub use lookup::{DEFAULT_DISK_SEED, DEFAULT_MIN_VARIANCE, Filter, Lookup};
 pub use map::{MapOptions, ShadowMap};
-pub use plan::{Partition, Splits, plan, plan_partitions};
-pub use presets::{Engine, Stabilisation};
+pub use partition::{CullingSphere, Partition};
+pub use plan::{Splits, plan, plan_partitions};
 pub use render::{
     FLAT_SCENE_THICKNESS, FLAT_SCENE_ULPS, Frame, FrameOptions, GivenDepths, LightMaps,
     LightShadow, MapSource, PartitionMap, PlanOptions, Shadows, Timings, eye_image, eye_pass,
     lit_at, plan_frame, plan_light, render_frame, render_shadows, scene_box, scene_eye,
     scene_input, selection_of, shadows_of,
 };
-pub use selection::{
-    Beyond, CullingSphere, Fade, FadeCurve, Selection, SelectionRule, Served, served,
-};
+pub use selection::{Beyond, Fade, FadeCurve, Selection, SelectionRule, Served, served};
 pub use setup::{LightSetup, PsmReport, ShadowMapping, WarpReport};
 pub use snap::snap_to_texels;
 pub use technique::{
-    LogarithmicChoice, NearDistance, ProductionVariant, StepDirection, Technique, WarpChoice,
+    Engine, LogarithmicChoice, NearDistance, ProductionVariant, SdsmVariant, Stabilisation,
+    StepDirection, Technique, WarpChoice,
 };

@@ -24,7 +24,7 @@
 //! (`Y = 2·ln(1 + κτ)/ln(1 + κ) − 1`, `w = 1 + κτ`), so `κ = 0` is the uniform map exactly, the
 //! limit the rule reaches as γ → 0.
 
-use glam::{DMat4, DVec2, DVec3};
+use glam::DVec3;
 
 use shadowlab_params::{FrustumModel, LightAngle, gmnpr};
 
@@ -35,6 +35,8 @@ use crate::input::PlanInput;
 use crate::setup::{LightSetup, ShadowMapping, WarpReport};
 use crate::technique::{LogarithmicChoice, Technique};
 use crate::warp::Extents;
+
+pub use crate::logarithmic_map::LogarithmicMap;
 
 /// The smallest λ of a logarithmic map: a reference point within a billionth of B's depth of its
 /// near plane would all but sit on B (a third of the map's rows would cover B's first 1e-6 of
@@ -48,142 +50,6 @@ pub const MIN_LAMBDA: f64 = 1e-9;
 /// there and the map's change per radian of γ bounded. On the built-in scenes the eye's λ is at
 /// least 2.8 times the floor (cad-lattice), so the floor leaves them alone.
 pub const REFERENCE_FLOOR_FRACTION: f64 = 0.1;
-
-/// The exact logarithmic mapping of one shadow map.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct LogarithmicMap {
-    /// World → light space (projective for a spot light).
-    world_to_light: DMat4,
-    /// Its inverse.
-    light_to_world: DMat4,
-    /// B's near plane (largest z) and its extent along the warp axis.
-    z_max: f64,
-    depth: f64,
-    /// κ = 1/λ = d/n', 0 for the uniform limit.
-    kappa: f64,
-    /// Lateral extents of x/w over B.
-    left: f64,
-    right: f64,
-    /// B's extent along the light axis.
-    y_min: f64,
-    y_max: f64,
-}
-
-impl LogarithmicMap {
-    /// GL NDC of a world point (`None` behind a spot light or on the eye's side of the logarithm's
-    /// reference point).
-    #[must_use]
-    pub fn ndc(&self, world: DVec3) -> Option<DVec3> {
-        let h = self.world_to_light * world.extend(1.0);
-        if h.w <= 0.0 {
-            return None;
-        }
-        let q = h.truncate() / h.w;
-        let tau = (self.z_max - q.z) / self.depth;
-        let w = 1.0 + self.kappa * tau;
-        if w <= 0.0 {
-            return None;
-        }
-        let x = (2.0 * q.x / w - (self.left + self.right)) / (self.right - self.left);
-        let y = 2.0 * self.warp(tau) - 1.0;
-        let depth = (self.y_max + self.y_min - 2.0 * q.y) / (self.y_max - self.y_min);
-        Some(DVec3::new(x, y, depth))
-    }
-
-    /// The derivative of [`Self::ndc`]'s `(X, Y)` at `world` along `direction` (per unit of
-    /// `direction`), differentiated in closed form (the map in the module docs): with
-    /// `h = M·(p, 1)`, `ḣ = M·(t, 0)`, `q = h/h_w`, `q̇ = (ḣ·h_w − h·ḣ_w)/h_w²`, `τ̇ = −q̇_z/d` and
-    /// `ẇ = κ·τ̇`,
-    ///
-    /// `Ẋ = 2·(q̇_x·w − q_x·ẇ)/(w²·(r − l))`,  `Ẏ = 2·τ̇·κ/(w·ln(1 + κ))`,
-    ///
-    /// the last with `κ/ln(1 + κ)` taken as 1 at κ = 0 (the uniform limit). `None` where `ndc` is
-    /// `None`.
-    #[must_use]
-    pub fn ndc_derivative(&self, world: DVec3, direction: DVec3) -> Option<DVec2> {
-        let h = self.world_to_light * world.extend(1.0);
-        if h.w <= 0.0 {
-            return None;
-        }
-        let dh = self.world_to_light * direction.extend(0.0);
-        let q = h.truncate() / h.w;
-        let dq = (dh.truncate() * h.w - h.truncate() * dh.w) / (h.w * h.w);
-        let tau = (self.z_max - q.z) / self.depth;
-        let w = 1.0 + self.kappa * tau;
-        if w <= 0.0 {
-            return None;
-        }
-        let dtau = -dq.z / self.depth;
-        let dw = self.kappa * dtau;
-        let dx = 2.0 * (dq.x * w - q.x * dw) / (w * w * (self.right - self.left));
-        let dy = 2.0 * dtau * self.slope() / w;
-        Some(DVec2::new(dx, dy))
-    }
-
-    /// The ray of light through the shadow-map point at NDC `(x, y)`: its origin on B's light side
-    /// (NDC depth −1) and the point where it leaves B's far side (NDC depth +1), in world space.
-    /// Casting it and mapping the first hit through [`Self::ndc`] gives the texel's depth.
-    #[must_use]
-    pub fn texel_ray(&self, x: f64, y: f64) -> (DVec3, DVec3) {
-        // Inverse of Y: τ = (exp(s·ln(1 + κ)) − 1)/κ, s = (Y + 1)/2, written with expm1 so that it
-        // is exact near τ = 0 and for small κ; τ = s at κ = 0.
-        let s = 0.5 * (y + 1.0);
-        let tau = if self.kappa > 0.0 {
-            (s * self.kappa.ln_1p()).exp_m1() / self.kappa
-        } else {
-            s
-        };
-        let w = 1.0 + self.kappa * tau;
-        let lateral = 0.5 * w * (x * (self.right - self.left) + self.left + self.right);
-        let z = self.z_max - tau * self.depth;
-        let to_world = |light_y: f64| {
-            let h = self.light_to_world * DVec3::new(lateral, light_y, z).extend(1.0);
-            h.truncate() / h.w
-        };
-        (to_world(self.y_max), to_world(self.y_min))
-    }
-
-    /// λ = n'/d, the reference point's distance beyond B's near plane in units of B's depth;
-    /// infinite for the uniform limit.
-    #[must_use]
-    pub fn lambda(&self) -> f64 {
-        1.0 / self.kappa
-    }
-
-    /// `dp/ds` along the view axis at eye depth `t`, for the map's own geometry (light space with
-    /// the eye at the origin, the view axis at `z = −t·sin γ`, `sin_gamma` of the map's space): with
-    /// `c = z_max + λ·d` the reference point's offset from the eye along the warp axis,
-    ///
-    /// `dp/ds = ln(1 + 1/λ)·(1 + c/(t·sin γ))`,
-    ///
-    /// the constant `ln(1 + 1/λ)` where the reference point is the eye (`c = 0`), and `d/(t·sin γ)`,
-    /// the uniform map's, at κ = 0. Written as `ln(1 + κ)·(1 + z_max/(t sin γ)) + (ln(1 + κ)/κ)·d/(t
-    /// sin γ)`, exact at κ = 0.
-    #[must_use]
-    pub fn view_axis_error(&self, sin_gamma: f64, t: f64) -> f64 {
-        let axis = t * sin_gamma;
-        self.kappa.ln_1p() * (1.0 + self.z_max / axis) + self.depth / (self.slope() * axis)
-    }
-
-    /// The warp axis's map coordinate in `[0, 1]` of a point a fraction τ through B:
-    /// `ln(1 + κτ)/ln(1 + κ)`, τ itself at κ = 0.
-    fn warp(&self, tau: f64) -> f64 {
-        if self.kappa > 0.0 {
-            (self.kappa * tau).ln_1p() / self.kappa.ln_1p()
-        } else {
-            tau
-        }
-    }
-
-    /// `κ/ln(1 + κ)`, the warp's slope at τ = 0; 1 at κ = 0.
-    fn slope(&self) -> f64 {
-        if self.kappa > 0.0 {
-            self.kappa / self.kappa.ln_1p()
-        } else {
-            1.0
-        }
-    }
-}
 
 /// λ of shadowlab's reference rule ([`LogarithmicChoice::Eye`]) for B with near plane `z_max`
 /// and depth `depth` along the warp axis (the eye at the light-space origin):
@@ -380,6 +246,7 @@ pub(crate) fn plan_in(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use glam::{DMat4, DVec2};
 
     /// Relative agreement asked of the closed-form derivative against Richardson-extrapolated
     /// central differences (whose own error is of order 1e-10 at these steps).

@@ -6,7 +6,7 @@ use std::f64::consts::TAU;
 use glam::{DVec2, DVec3};
 use shadowlab_params::vsm::ShiftedMoments;
 
-use crate::bias::{Bias, Comparison};
+use crate::bias::{Bias, Comparison, spec_numbers};
 use crate::map::ShadowMap;
 
 /// How many texels a lookup reads, and how it combines them.
@@ -180,28 +180,6 @@ fn disk_taps(taps: u32, radius: f64, seed: u64) -> Vec<DVec2> {
             DVec2::new(r * angle.cos(), r * angle.sin())
         })
         .collect()
-}
-
-/// The numbers after `name:` in a spec like `slope:2,1e-5`, at most `max` of them.
-pub(crate) fn spec_numbers(spec: &str, max: usize) -> Result<(&str, Vec<f64>), String> {
-    let (name, rest) = spec.split_once(':').unwrap_or((spec, ""));
-    let numbers: Vec<f64> = rest
-        .split(',')
-        .filter(|s| !s.is_empty())
-        .map(|s| {
-            s.trim()
-                .parse::<f64>()
-                .ok()
-                .filter(|v| v.is_finite())
-                .ok_or_else(|| format!("{s:?} in {spec:?} is not a finite number"))
-        })
-        .collect::<Result<_, _>>()?;
-    if numbers.len() > max {
-        return Err(format!(
-            "{spec:?} takes at most {max} numbers after {name:?}"
-        ));
-    }
-    Ok((name, numbers))
 }
 
 impl Filter {

@@ -6,11 +6,11 @@ use shadowlab_params::splits::SplitScheme;
 use shadowlab_params::{DepthRange, LightAngle, ParameterRule};
 
 use crate::error::ShadowError;
-use crate::faces::{self, FaceRegion};
+use crate::faces;
 use crate::focus::{focus_in_light_space, view_model};
 use crate::input::PlanInput;
 use crate::parameter::{self, WarpGeometry};
-use crate::selection::CullingSphere;
+use crate::partition::Partition;
 use crate::setup::{LightSetup, ShadowMapping, WarpReport};
 use crate::technique::{LogarithmicChoice, Technique, WarpChoice};
 use crate::warp::{self, Extents};
@@ -211,24 +211,6 @@ impl Splits {
     /// shadowlab's default: Zhang et al.'s practical split with weight 0.5, halfway between the
     /// uniform and the logarithmic split.
     pub const DEFAULT: Self = Self::Practical { weight: 0.5 };
-}
-
-/// One part of a partitioned shadow: the eye depths it serves (z-partitioning), the part of the
-/// light's view it serves (face partitioning), and its map's set-up.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Partition {
-    /// The eye depth where it starts.
-    pub near: f64,
-    /// The eye depth where it ends.
-    pub far: f64,
-    /// For a face partition ([`crate::faces`]), the face of its z-partition's view whose projection
-    /// it serves; `None`: all of the view at these depths.
-    pub face: Option<FaceRegion>,
-    /// For a cascade fitted to a bounding sphere, the sphere (`SelectionRule::Containing` tests
-    /// it); `None` otherwise.
-    pub sphere: Option<CullingSphere>,
-    /// Its light set-up, planned for the sub-frustum `[near, far]` (and the face).
-    pub setup: LightSetup,
 }
 
 /// z-partitioning (CAD §3.3): the view's depth range split into `count` parts by `splits`, each

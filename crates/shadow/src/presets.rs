@@ -13,8 +13,6 @@
 //! - blending engines fit the next cascade from the start of the blend band, so both maps cover it
 //!   (Bevy does so itself; for Babylon and Unreal, named **band coverage**).
 
-use std::fmt;
-
 use shadowlab_params::DepthRange;
 use shadowlab_params::splits::SplitScheme;
 
@@ -22,40 +20,11 @@ use crate::bias::{Bias, DepthComparison, NormalOffset};
 use crate::cascades::{self, CascadeFit, CascadeSlice, Snap};
 use crate::error::ShadowError;
 use crate::input::{LightSource, PlanInput};
-use crate::plan::{Partition, plan, plan_partitions_at};
+use crate::partition::Partition;
+use crate::plan::{plan, plan_partitions_at};
 use crate::selection::{Beyond, Fade, FadeCurve, Selection, SelectionRule};
 use crate::setup::ShadowMapping;
-use crate::technique::{ProductionVariant, Technique, WarpChoice};
-
-/// An engine whose default directional shadows a preset reproduces.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Engine {
-    /// Bevy (`crates/bevy_light/src/cascade.rs`, `crates/bevy_pbr/src/render/shadows.wgsl`).
-    Bevy,
-    /// Filament (`LightManager.h` `ShadowOptions`, `ShadowMap.cpp`, `ShadowMapManager.cpp`).
-    Filament,
-    /// Godot 4 (`renderer_scene_cull.cpp` `_light_instance_setup_directional_shadow`).
-    Godot,
-    /// Babylon.js `CascadedShadowGenerator` (`cascadedShadowGenerator.ts`).
-    Babylon,
-    /// three.js's CSM addon (`examples/jsm/csm/CSM.js`, `CSMFrustum.js`, `CSMShader.js`).
-    ThreeJs,
-    /// Unity URP (`UniversalRenderPipelineAsset.cs`, `ShadowUtils.cs`, `Shadows.hlsl`).
-    Unity,
-    /// Unreal Engine's documented defaults: its source is not public, so every item is
-    /// unverified (`docs/engine-sources.md` §7).
-    Unreal,
-}
-
-/// Whether a preset keeps its engine's stabilisation (texel snapping).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-pub enum Stabilisation {
-    /// As the engine ships it.
-    #[default]
-    Engine,
-    /// Snapping off (`ENGINE:unsnapped`): the same cascades, windows where the fit puts them.
-    Unsnapped,
-}
+use crate::technique::{Engine, ProductionVariant, Stabilisation, Technique, WarpChoice};
 
 /// The map an engine allocates by default, for the docs' memory table.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -67,38 +36,6 @@ pub struct EngineMap {
 }
 
 impl Engine {
-    /// Every engine, in the order outputs list them.
-    pub const ALL: [Self; 7] = [
-        Self::Bevy,
-        Self::Filament,
-        Self::Godot,
-        Self::Babylon,
-        Self::ThreeJs,
-        Self::Unity,
-        Self::Unreal,
-    ];
-
-    /// Its key, the technique's name: `bevy`, `filament`, `godot`, `babylon`, `threejs`, `unity`,
-    /// `unreal`.
-    #[must_use]
-    pub fn key(self) -> &'static str {
-        match self {
-            Self::Bevy => "bevy",
-            Self::Filament => "filament",
-            Self::Godot => "godot",
-            Self::Babylon => "babylon",
-            Self::ThreeJs => "threejs",
-            Self::Unity => "unity",
-            Self::Unreal => "unreal",
-        }
-    }
-
-    /// The engine named `key`.
-    #[must_use]
-    pub fn from_key(key: &str) -> Option<Self> {
-        Self::ALL.into_iter().find(|e| e.key() == key)
-    }
-
     /// Its default map: Bevy `DirectionalLightShadowMap` 2048, Depth32Float; Filament `mapSize`
     /// 1024, DEPTH16; Godot's 4096 atlas of 4 → 2048, 16-bit; Babylon none (a constructor
     /// argument), 32-bit; three.js CSM `shadowMapSize` 2048, 32-bit (unverified per release); Unity
@@ -361,12 +298,6 @@ impl Engine {
                 plan_partitions_at(input, lispsm, &bounds).map(labelled)
             }
         }
-    }
-}
-
-impl fmt::Display for Engine {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.key())
     }
 }
 

@@ -88,8 +88,6 @@
 //!   set in its UI. Sorted depths and sums in a fixed order make it deterministic and independent
 //!   of the samples' order.
 
-use std::fmt;
-
 use glam::{DMat4, DVec3, DVec4};
 use shadowlab_hull::HullError;
 use shadowlab_params::{DepthRange, ParamError};
@@ -97,8 +95,9 @@ use shadowlab_params::{DepthRange, ParamError};
 use crate::error::ShadowError;
 use crate::frame::LightFrame;
 use crate::input::{LightSource, PlanInput};
-use crate::plan::Partition;
+use crate::partition::Partition;
 use crate::setup::{LightSetup, ShadowMapping};
+pub use crate::technique::SdsmVariant;
 use crate::technique::Technique;
 
 /// The key errors and the light frame know this planner by.
@@ -120,42 +119,7 @@ pub const ROUNDING_PASSES: i32 = 64;
 /// spread, so the iteration settles; the cap bounds the time on adversarial depths.
 pub const KMEANS_ITERATIONS: usize = 100;
 
-/// How the visible depth range is split into partitions.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-pub enum SdsmVariant {
-    /// The logarithmic split of the samples' tight depth range `[min, max]`:
-    /// `min·(max/min)^(i/k)` (the sample's `LogPartitionFromRange`; CAD eq. 5 on the visible range).
-    #[default]
-    Log,
-    /// k-means clustering of the samples' eye depths ([exact k-means](#exact-k-means)); the splits
-    /// are the midpoints between neighbouring cluster centres.
-    Kmeans,
-}
-
 impl SdsmVariant {
-    /// Every variant.
-    pub const ALL: [Self; 2] = [Self::Log, Self::Kmeans];
-
-    /// Its key: `log` or `kmeans`.
-    #[must_use]
-    pub fn key(self) -> &'static str {
-        match self {
-            Self::Log => "log",
-            Self::Kmeans => "kmeans",
-        }
-    }
-
-    /// The variant named `key`.
-    ///
-    /// # Errors
-    /// An unknown key, with the known ones.
-    pub fn parse(key: &str) -> Result<Self, String> {
-        Self::ALL
-            .into_iter()
-            .find(|v| v.key() == key)
-            .ok_or_else(|| format!("unknown SDSM variant {key:?}; known: log, kmeans"))
-    }
-
     /// The `count + 1` split depths of `depths` (eye depths of samples, any order): non-decreasing,
     /// the first the smallest depth and the last the largest, exactly. Partition `i` is
     /// `[b_i, b_{i+1})`, the last one closed. Consecutive equal splits make empty partitions, which
@@ -200,12 +164,6 @@ impl SdsmVariant {
 }
 
 /// The form [`SdsmVariant::parse`] reads.
-impl fmt::Display for SdsmVariant {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.key())
-    }
-}
-
 /// `count` must be at least 1, as for every split scheme.
 fn check_count(count: usize) -> Result<(), ShadowError> {
     if count == 0 {

@@ -6,7 +6,7 @@
 use glam::DVec3;
 
 use crate::input::Eye;
-use crate::plan::Partition;
+use crate::partition::Partition;
 
 /// How a light's partitions (cascades) share the view.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -99,30 +99,6 @@ impl Fade {
                 / (end * end - start * start))
                 .clamp(0.0, 1.0),
         }
-    }
-}
-
-/// A cascade's culling sphere (Unity URP: `_CascadeShadowSplitSpheres`): the bound the
-/// [`SelectionRule::Containing`] rule tests where a cascade has one.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct CullingSphere {
-    /// Its centre, world space.
-    pub centre: DVec3,
-    /// Its radius.
-    pub radius: f64,
-}
-
-impl Partition {
-    /// Whether its map contains `world`: inside its culling sphere (`|p − c|² < r²`) where it has
-    /// one, else inside its map's window (`x, y ∈ [0, 1)`, depth in `[0, 1]`).
-    #[must_use]
-    pub fn contains(&self, world: DVec3) -> bool {
-        if let Some(sphere) = self.sphere {
-            return (world - sphere.centre).length_squared() < sphere.radius * sphere.radius;
-        }
-        self.setup.mapping.window(world).is_some_and(|w| {
-            (0.0..1.0).contains(&w.x) && (0.0..1.0).contains(&w.y) && (0.0..=1.0).contains(&w.z)
-        })
     }
 }
 

@@ -3,7 +3,7 @@
 
 use glam::{DMat4, DVec3};
 
-use crate::logarithmic::LogarithmicMap;
+use crate::logarithmic_map::LogarithmicMap;
 use crate::technique::Technique;
 
 /// How world points map to the shadow map.

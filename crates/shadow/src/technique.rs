@@ -4,9 +4,6 @@ use std::fmt;
 
 use shadowlab_params::{ParameterRule, WarpParameter};
 
-use crate::presets::{Engine, Stabilisation};
-use crate::sdsm::SdsmVariant;
-
 /// A shadow-map technique: how the light's view and projection are built.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Technique {
@@ -443,5 +440,118 @@ impl fmt::Display for Technique {
             (_, Some(parameter)) => write!(f, "{} ({parameter})", self.key()),
             (_, None) => f.write_str(self.key()),
         }
+    }
+}
+
+/// An engine whose default directional shadows a preset reproduces.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Engine {
+    /// Bevy (`crates/bevy_light/src/cascade.rs`, `crates/bevy_pbr/src/render/shadows.wgsl`).
+    Bevy,
+    /// Filament (`LightManager.h` `ShadowOptions`, `ShadowMap.cpp`, `ShadowMapManager.cpp`).
+    Filament,
+    /// Godot 4 (`renderer_scene_cull.cpp` `_light_instance_setup_directional_shadow`).
+    Godot,
+    /// Babylon.js `CascadedShadowGenerator` (`cascadedShadowGenerator.ts`).
+    Babylon,
+    /// three.js's CSM addon (`examples/jsm/csm/CSM.js`, `CSMFrustum.js`, `CSMShader.js`).
+    ThreeJs,
+    /// Unity URP (`UniversalRenderPipelineAsset.cs`, `ShadowUtils.cs`, `Shadows.hlsl`).
+    Unity,
+    /// Unreal Engine's documented defaults: its source is not public, so every item is
+    /// unverified (`docs/engine-sources.md` §7).
+    Unreal,
+}
+
+/// Whether a preset keeps its engine's stabilisation (texel snapping).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Stabilisation {
+    /// As the engine ships it.
+    #[default]
+    Engine,
+    /// Snapping off (`ENGINE:unsnapped`): the same cascades, windows where the fit puts them.
+    Unsnapped,
+}
+
+impl Engine {
+    /// Every engine, in the order outputs list them.
+    pub const ALL: [Self; 7] = [
+        Self::Bevy,
+        Self::Filament,
+        Self::Godot,
+        Self::Babylon,
+        Self::ThreeJs,
+        Self::Unity,
+        Self::Unreal,
+    ];
+
+    /// Its key, the technique's name: `bevy`, `filament`, `godot`, `babylon`, `threejs`, `unity`,
+    /// `unreal`.
+    #[must_use]
+    pub fn key(self) -> &'static str {
+        match self {
+            Self::Bevy => "bevy",
+            Self::Filament => "filament",
+            Self::Godot => "godot",
+            Self::Babylon => "babylon",
+            Self::ThreeJs => "threejs",
+            Self::Unity => "unity",
+            Self::Unreal => "unreal",
+        }
+    }
+
+    /// The engine named `key`.
+    #[must_use]
+    pub fn from_key(key: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|e| e.key() == key)
+    }
+}
+
+impl fmt::Display for Engine {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.key())
+    }
+}
+
+/// How the visible depth range is split into partitions.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum SdsmVariant {
+    /// The logarithmic split of the samples' tight depth range `[min, max]`:
+    /// `min·(max/min)^(i/k)` (the sample's `LogPartitionFromRange`; CAD eq. 5 on the visible range).
+    #[default]
+    Log,
+    /// k-means clustering of the samples' eye depths ([`crate::sdsm`]'s exact k-means); the splits
+    /// are the midpoints between neighbouring cluster centres.
+    Kmeans,
+}
+
+impl SdsmVariant {
+    /// Every variant.
+    pub const ALL: [Self; 2] = [Self::Log, Self::Kmeans];
+
+    /// Its key: `log` or `kmeans`.
+    #[must_use]
+    pub fn key(self) -> &'static str {
+        match self {
+            Self::Log => "log",
+            Self::Kmeans => "kmeans",
+        }
+    }
+
+    /// The variant named `key`.
+    ///
+    /// # Errors
+    /// An unknown key, with the known ones.
+    pub fn parse(key: &str) -> Result<Self, String> {
+        Self::ALL
+            .into_iter()
+            .find(|v| v.key() == key)
+            .ok_or_else(|| format!("unknown SDSM variant {key:?}; known: log, kmeans"))
+    }
+}
+
+impl fmt::Display for SdsmVariant {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.key())
     }
 }
