@@ -27,8 +27,8 @@ fn untimed(csv: &str) -> Vec<String> {
     csv.lines()
         .map(|line| {
             let fields: Vec<&str> = line.split(',').collect();
-            // Planning, shadow pass, lookup, total and the total's spread.
-            fields[..fields.len() - 5].join(",")
+            // Planning, shadow pass, lookup, total, the total's spread and the attribution.
+            fields[..fields.len() - 6].join(",")
         })
         .collect()
 }
