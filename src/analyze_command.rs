@@ -12,7 +12,9 @@ use crate::args::{AnalyzeArgs, MemoryArgs, SceneArg, StudyView, SweepArgs, Tempo
 use crate::error::CliError;
 use crate::exports::{self, Exporter};
 use crate::memory::{self, Workload};
-use crate::output::{OutputDir, TEXT_BOUND, annotated_png_bound, png_bound, print_line, slug};
+use crate::output::{
+    OutputDir, PICTURES, TEXT_BOUND, annotated_png_bound, png_bound, print_line, slug,
+};
 use crate::progress;
 use crate::shadow_settings::{load_scene_argument, optimizer_flags, technique_list};
 
@@ -62,8 +64,7 @@ pub(crate) fn analyze(args: &AnalyzeArgs) -> Result<(), CliError> {
         .max()
         .unwrap_or(0);
     let maps = options.partitions.iter().copied().max().unwrap_or(1) as u64;
-    // Per technique at the picture resolution, three raw pictures and three annotated ones, and
-    // the exports.
+    // Per technique at the picture resolution, each picture raw and annotated, and the exports.
     let (width, height) = (scene.camera.width, scene.camera.height);
     let annotated = annotated_png_bound(width, height);
     let export_bound = if args.export {
@@ -73,7 +74,7 @@ pub(crate) fn analyze(args: &AnalyzeArgs) -> Result<(), CliError> {
         0
     };
     let estimate = TEXT_BOUND
-        + 3 * options.techniques.len() as u64 * (png_bound(width, height, 3) + annotated)
+        + PICTURES * options.techniques.len() as u64 * (png_bound(width, height, 3) + annotated)
         + export_bound;
     let out = output_dir(args.out.as_ref(), "analyze", &scene, estimate)?;
     memory::check(

@@ -11,7 +11,9 @@ use crate::args::EvaluateArgs;
 use crate::error::CliError;
 use crate::exports::{self, Exporter};
 use crate::memory::{self, Workload};
-use crate::output::{OutputDir, TEXT_BOUND, annotated_png_bound, png_bound, print_line, slug};
+use crate::output::{
+    OutputDir, PICTURES, TEXT_BOUND, annotated_png_bound, png_bound, print_line, slug,
+};
 use crate::progress;
 use crate::shadow_settings::load_scene_argument;
 
@@ -22,7 +24,7 @@ pub(crate) fn run(args: &EvaluateArgs) -> Result<(), CliError> {
     let scene = load_scene_argument(&args.scene)?;
     let setup = load_setup(&args.setup)?;
     let frames = setup.frames.len() as u64;
-    // Per frame the report and its pictures (three raw and three annotated), and the exports.
+    // Per frame the report and its pictures (each raw and annotated), and the exports.
     let (width, height) = (scene.camera.width, scene.camera.height);
     let maps = setup.most_maps() as u64;
     let export_bound = if args.export {
@@ -32,7 +34,8 @@ pub(crate) fn run(args: &EvaluateArgs) -> Result<(), CliError> {
     };
     let estimate = frames
         .saturating_mul(
-            TEXT_BOUND + 3 * (png_bound(width, height, 3) + annotated_png_bound(width, height)),
+            TEXT_BOUND
+                + PICTURES * (png_bound(width, height, 3) + annotated_png_bound(width, height)),
         )
         .saturating_add(export_bound);
     let target = args
@@ -115,13 +118,18 @@ pub(crate) fn run(args: &EvaluateArgs) -> Result<(), CliError> {
         && let Ok(o) = &m.outcome
     {
         print_line(&format!(
-            "{:<24} {:>5}² {} map(s) {:>8} misclassified ({} falsely lit, {} falsely shadowed)",
+            "{:<24} {:>5}² {} map(s) {:>8} misclassified ({} falsely lit, {} falsely shadowed; \
+             {} acne, {} peter-panning, {} seam, {} aliasing)",
             technique_label(m.setting.technique),
             m.setting.resolution,
             m.setting.partitions,
             o.errors.total(),
             o.errors.falsely_lit,
-            o.errors.falsely_shadowed
+            o.errors.falsely_shadowed,
+            o.causes.acne,
+            o.causes.peter_panning,
+            o.causes.seam,
+            o.causes.aliasing
         ))?;
     }
     if let Some(Stability {

@@ -38,6 +38,10 @@ const MAX_SLUG_LENGTH: usize = 100;
 /// pictures, for the free-space check.
 pub(crate) const TEXT_BOUND: u64 = 4 << 20;
 
+/// The pictures of one pictured combination (eye view, difference image, its causes, heat map),
+/// each written raw and annotated.
+pub(crate) const PICTURES: u64 = shadowlab_analysis::pictures::PictureKind::ALL.len() as u64;
+
 /// A bound on the bytes of a PNG of `width` × `height` pixels of `bytes_per_pixel` bytes: the raw
 /// pixels, deflate's worst-case overhead (under 0.1 %) and the headers.
 pub(crate) fn png_bound(width: u32, height: u32, bytes_per_pixel: u64) -> u64 {

@@ -27,8 +27,8 @@ fn untimed(csv: &str) -> Vec<String> {
     csv.lines()
         .map(|line| {
             let fields: Vec<&str> = line.split(',').collect();
-            // Planning, shadow pass, lookup, total and the total's spread.
-            fields[..fields.len() - 5].join(",")
+            // Planning, shadow pass, lookup, total, the total's spread and the attribution.
+            fields[..fields.len() - 6].join(",")
         })
         .collect()
 }
@@ -74,8 +74,8 @@ fn analyze_is_identical_on_any_thread_count_but_for_timings() {
             })
             .filter(|(name, _)| name.starts_with("images/") || name.starts_with("pictures/"))
             .collect();
-        // Three techniques, each with three raw and three annotated pictures.
-        assert_eq!(pictures.len(), 18, "{pictures:?}");
+        // Three techniques, each with four raw and four annotated pictures.
+        assert_eq!(pictures.len(), 24, "{pictures:?}");
         sets.push((
             untimed(&fs::read_to_string(out.join("results.csv")).unwrap()),
             pictures,

@@ -65,7 +65,8 @@ fn whole_study(c: &mut Criterion) {
     group.bench_function("outdoor/one-combination", |b| {
         b.iter(|| {
             let shadows = study::render(&scene, &options, &setting, &eye, &bvh).expect("render");
-            study::measure(&scene, &truth, &eye.image, &shadows)
+            study::measure(&scene, &truth, &eye.image, &shadows, setting.filter, &bvh)
+                .expect("the measurement")
         });
     });
     group.finish();

@@ -30,7 +30,7 @@ use crate::classify::LIT_THRESHOLD;
 use crate::setup_file::{
     DEPTH_IMAGE_SLACK_BYTES, DepthImage, ImageKind, Setup, SetupError, SetupPartition, read_bounded,
 };
-use crate::study::{Measurement, Pictures, Setting, Study, frame_footprints, outcome};
+use crate::study::{Measurement, Pictures, Setting, Study, attributed, frame_footprints, outcome};
 use crate::temporal::{Stability, shimmer};
 use crate::truth::{exact_truth, scene_bvh};
 
@@ -38,8 +38,8 @@ use crate::truth::{exact_truth, scene_bvh};
 /// the study of that frame's eye pass and truth, holding one measurement, the set-up's (labelled
 /// by the file's technique, [`shadowlab_shadow::Technique::Given`] if it names none, with the
 /// first light's first partition's map size and filter and its number of partitions), and the
-/// frame's footprint heat map and difference image if `pictures`. A frame is dropped once its
-/// study is handed over, so a long set-up needs the memory of one frame.
+/// frame's footprint heat map, difference image and causes picture if `pictures`. A frame is
+/// dropped once its study is handed over, so a long set-up needs the memory of one frame.
 ///
 /// Returns, for two frames or more, the shimmering pixels between consecutive frames (first
 /// light, `snap_texels` 0: the matrices are measured as given).
@@ -179,6 +179,16 @@ pub fn evaluate_observed<E: From<SetupError>>(
         shadows.timings.shadow_pass += reading;
 
         let per_pixel = frame_footprints(&moved, &eye, &shadows);
+        // Each partition's errors are attributed with the filter it was looked up with.
+        let attribution = attributed(
+            &moved,
+            &eye,
+            &truth,
+            &shadows,
+            |light, partition| frame.lights[light][partition].lookup.filter,
+            &bvh,
+        )
+        .map_err(SetupError::from)?;
         let setting = setting(setup, frame.lights.first());
         let frame_pictures = if pictures {
             vec![Pictures::of(
@@ -187,11 +197,12 @@ pub fn evaluate_observed<E: From<SetupError>>(
                 (&eye, &truth),
                 &shadows,
                 &per_pixel,
+                &attribution.0,
             )]
         } else {
             Vec::new()
         };
-        let measured = outcome(&truth, &shadows, &per_pixel);
+        let measured = outcome(&truth, &shadows, &per_pixel, &attribution);
 
         let states: States = match shadows.lit.first() {
             Some(lit) => eye

@@ -10,9 +10,9 @@
 //! - **sortable tables**: clicking a column's header (or Enter on it) sorts the rows by it,
 //!   numbers by value (a cell's leading number: `568 (5.79 %)` sorts as 568), others as text,
 //!   empty cells (`—`) last; again to reverse.
-//! - **the pictures**: for each technique pictured, the eye view, the difference image and the
-//!   heat map side by side, with the difference image's legend (each class's colour and pixel
-//!   count) and the heat map's colour bar (quantity, unit, log scale, range, and ▼ at the least
+//! - **the pictures**: for each technique pictured, the eye view, the difference image, its
+//!   causes and the heat map side by side, with the legends of the difference image and of its
+//!   causes (each class's colour and pixel count) and the heat map's colour bar (quantity, unit, log scale, range, and ▼ at the least
 //!   and greatest value of the picture). A technique is chosen with its button; the crop — a zoom
 //!   factor and a centre, set by clicking a picture (or the arrow keys on it) — stays when the
 //!   technique changes, so the same part of the view is compared. Links open the annotated PNGs.
@@ -35,7 +35,7 @@ use serde_json::json;
 
 use crate::classify::{BACKGROUND, CORRECT_LIT, CORRECT_SHADOW, FALSELY_LIT, FALSELY_SHADOWED};
 use crate::document::{self, Block, escape_html};
-use crate::images::{ClassCounts, HeatScale, NO_VALUE, NO_VALUE_MEANING, VIRIDIS};
+use crate::images::{CauseCounts, ClassCounts, HeatScale, NO_VALUE, NO_VALUE_MEANING, VIRIDIS};
 use crate::labels::{filter_label, technique_label};
 use crate::pictures::{self, PictureKind};
 use crate::study::Study;
@@ -162,7 +162,7 @@ const BODY_SCRIPT: &str = r#"
   // The pictures: one technique at a time, one crop for all.
   var dataElement = document.getElementById('picture-data');
   var data = dataElement ? JSON.parse(dataElement.textContent) : [];
-  var kinds = ['eye', 'difference', 'heatmap'];
+  var kinds = ['eye', 'difference', 'difference-causes', 'heatmap'];
   var view = { technique: 0, zoom: 1, cx: 0.5, cy: 0.5 };
   function offset(centre) {
     return Math.min(Math.max(centre * view.zoom - 0.5, 0), view.zoom - 1);
@@ -369,14 +369,31 @@ fn pictures_section(study: &Study) -> String {
         .iter()
         .map(|p| {
             let technique = p.setting.technique;
+            let by_kind = |f: &dyn Fn(PictureKind) -> String| {
+                serde_json::Value::Object(
+                    PictureKind::ALL
+                        .into_iter()
+                        .map(|kind| (kind.key().to_owned(), f(kind).into()))
+                        .collect(),
+                )
+            };
             let path = |f: fn(PictureKind, shadowlab_shadow::Technique) -> String| {
-                json!({
-                    "eye": f(PictureKind::Eye, technique),
-                    "difference": f(PictureKind::Difference, technique),
-                    "heatmap": f(PictureKind::Heatmap, technique),
-                })
+                by_kind(&|kind| f(kind, technique))
             };
             let counts = ClassCounts::of(&p.difference);
+            let mut count_values = serde_json::Map::new();
+            for (name, n) in [
+                ("falsely-lit", counts.falsely_lit),
+                ("falsely-shadowed", counts.falsely_shadowed),
+                ("correct-lit", counts.correct_lit),
+                ("correct-shadow", counts.correct_shadow),
+                ("background", counts.background),
+            ] {
+                count_values.insert(name.to_owned(), n.into());
+            }
+            for (_, _, n, name) in CauseCounts::of(&p.causes).classes() {
+                count_values.insert(name.to_owned(), n.into());
+            }
             let at = |v: f64| left + scale.fraction(v).unwrap_or(0.0) * length;
             let range_text = p.footprint_range.map_or_else(
                 || "no pixel has a footprint".to_owned(),
@@ -394,18 +411,8 @@ fn pictures_section(study: &Study) -> String {
                 "settings": pictures::settings(study, &p.setting),
                 "raw": path(PictureKind::raw_path),
                 "annotated": path(PictureKind::annotated_path),
-                "alt": {
-                    "eye": alt(PictureKind::Eye),
-                    "difference": alt(PictureKind::Difference),
-                    "heatmap": alt(PictureKind::Heatmap),
-                },
-                "counts": {
-                    "falsely-lit": counts.falsely_lit,
-                    "falsely-shadowed": counts.falsely_shadowed,
-                    "correct-lit": counts.correct_lit,
-                    "correct-shadow": counts.correct_shadow,
-                    "background": counts.background,
-                },
+                "alt": by_kind(&alt),
+                "counts": count_values,
                 "range_text": range_text,
                 "range_at": p.footprint_range.map(|(low, high)| [at(low), at(high)]),
             })
@@ -415,8 +422,8 @@ fn pictures_section(study: &Study) -> String {
     writeln!(
         html,
         "<p>Each technique at {}² with {} map(s) per light and filter {}: the view with its \
-         shadows, the pixels it misclassifies against the exact truth, and its texel footprint on \
-         screen, side by side, one pixel per eye pixel. Click a picture to zoom in there, or choose \
+         shadows, the pixels it misclassifies against the exact truth, the same pixels coloured by \
+         cause, and its texel footprint on screen, side by side, one pixel per eye pixel. Click a picture to zoom in there, or choose \
          the zoom; the crop stays when you switch techniques. The annotated pictures (title, \
          settings, legend or colour bar) are in <code>pictures/</code>, the raw ones in \
          <code>images/</code>.</p>",
@@ -494,6 +501,13 @@ fn pictures_section(study: &Study) -> String {
                     ],
                     counts.classes().map(|c| c.0)
                 );
+            }
+            PictureKind::Causes => {
+                key.push_str("<ul class=\"swatches\">\n");
+                for (colour, meaning, n, id) in CauseCounts::of(&first.causes).classes() {
+                    key.push_str(&swatch(colour, meaning, Some((id, n))));
+                }
+                key.push_str("</ul>\n");
             }
             PictureKind::Heatmap => {
                 key.push_str(&colour_bar_svg());

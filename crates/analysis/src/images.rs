@@ -1,6 +1,7 @@
 //! Pictures of per-pixel measurements: a heat map on a logarithmic scale, and the keys that make
-//! the study's pictures explain themselves — the heat map's colour bar and the difference image's
-//! legend, as `shadowlab-plot` draws them ([`footprint_colour_bar`], [`difference_legend`]).
+//! the study's pictures explain themselves — the heat map's colour bar and the legends of the
+//! difference image and of its causes, as `shadowlab-plot` draws them ([`footprint_colour_bar`],
+//! [`difference_legend`], [`causes_legend`]).
 //!
 //! # The colour map
 //! viridis (Stéfan van der Walt and Nathaniel Smith, 2015; matplotlib's default, released CC0),
@@ -20,6 +21,7 @@
 
 use shadowlab_plot::{Color, ColourBar, Scale, Swatch};
 
+use crate::attribution::{ACNE, ALIASING, PETER_PANNING, SEAM};
 use crate::classify::{BACKGROUND, CORRECT_LIT, CORRECT_SHADOW, FALSELY_LIT, FALSELY_SHADOWED};
 use crate::error::AnalysisError;
 
@@ -251,6 +253,95 @@ pub fn difference_legend(counts: &ClassCounts) -> Vec<Swatch> {
         .classes()
         .iter()
         .map(|&([r, g, b], meaning, n)| Swatch {
+            color: Color(r, g, b),
+            label: format!("{meaning}: {n} px"),
+        })
+        .collect()
+}
+
+/// How many pixels of a causes picture ([`crate::attribution::cause_image`]) have each of its
+/// colours.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct CauseCounts {
+    /// [`ACNE`]: acne is the first cause of some light's error.
+    pub acne: u64,
+    /// [`PETER_PANNING`]: peter-panning is.
+    pub peter_panning: u64,
+    /// [`SEAM`]: a seam is.
+    pub seam: u64,
+    /// [`ALIASING`]: aliasing is.
+    pub aliasing: u64,
+    /// [`CORRECT_LIT`]: correct, lit by at least one light.
+    pub correct_lit: u64,
+    /// [`CORRECT_SHADOW`]: correct, lit by none.
+    pub correct_shadow: u64,
+    /// [`BACKGROUND`]: nothing visible.
+    pub background: u64,
+}
+
+impl CauseCounts {
+    /// Counts the classes of `causes`; a pixel of any other colour counts nowhere.
+    #[must_use]
+    pub fn of(causes: &[[u8; 3]]) -> Self {
+        let mut counts = Self::default();
+        for pixel in causes {
+            match *pixel {
+                ACNE => counts.acne += 1,
+                PETER_PANNING => counts.peter_panning += 1,
+                SEAM => counts.seam += 1,
+                ALIASING => counts.aliasing += 1,
+                CORRECT_LIT => counts.correct_lit += 1,
+                CORRECT_SHADOW => counts.correct_shadow += 1,
+                BACKGROUND => counts.background += 1,
+                _ => {}
+            }
+        }
+        counts
+    }
+
+    /// The classes in the legend's order: colour, what it means, how many pixels, and the class's
+    /// name in `report.html` (`count-NAME`).
+    #[must_use]
+    pub fn classes(&self) -> [([u8; 3], &'static str, u64, &'static str); 7] {
+        [
+            (ACNE, "acne (own surface's depth)", self.acne, "acne"),
+            (
+                PETER_PANNING,
+                "peter-panning (lit by the bias)",
+                self.peter_panning,
+                "peter-panning",
+            ),
+            (SEAM, "seam between partitions", self.seam, "seam"),
+            (ALIASING, "aliasing (the rest)", self.aliasing, "aliasing"),
+            (
+                CORRECT_LIT,
+                "correct, lit",
+                self.correct_lit,
+                "causes-correct-lit",
+            ),
+            (
+                CORRECT_SHADOW,
+                "correct, in shadow",
+                self.correct_shadow,
+                "causes-correct-shadow",
+            ),
+            (
+                BACKGROUND,
+                "nothing visible",
+                self.background,
+                "causes-background",
+            ),
+        ]
+    }
+}
+
+/// The causes picture's legend: each class's colour, meaning and pixel count.
+#[must_use]
+pub fn causes_legend(counts: &CauseCounts) -> Vec<Swatch> {
+    counts
+        .classes()
+        .iter()
+        .map(|&([r, g, b], meaning, n, _)| Swatch {
             color: Color(r, g, b),
             label: format!("{meaning}: {n} px"),
         })

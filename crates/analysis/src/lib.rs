@@ -7,6 +7,7 @@
 //! |---|---|---|
 //! | [`truth`] | whether each visible point is lit by each light: exactly, one shadow ray per pixel ([`truth::exact_truth`], `shadowlab-trace`), or from a very fine uniform map ([`truth::map_truth`]) | CG06 §5 (map truth) |
 //! | [`classify`] | falsely lit and falsely shadowed pixels of a frame against a truth, and their picture | — |
+//! | [`attribution`] | each misclassified pixel's cause — acne, peter-panning, a partition seam, aliasing — counted and pictured | — |
 //! | [`aliasing`] | the texel's footprint on screen per pixel from the Jacobian of screen → shadow map on the visible surface, split into perspective and projection parts | CG06 eqs. 4–6, LiSPSM eq. 1; formulas.md §1, §6 |
 //! | [`export`] | every per-pixel result as NumPy arrays and EXR channels with an index: eye pass, truth, lookups and their classes, footprints, raw map depths | — |
 //! | [`images`] | heat maps of per-pixel values on a logarithmic viridis scale; the colour bar and the difference image's legend | — |
@@ -45,6 +46,7 @@
 #![deny(missing_docs)]
 
 pub mod aliasing;
+pub mod attribution;
 pub mod classify;
 mod document;
 mod error;

@@ -2,8 +2,8 @@
 //!
 //! | path | what |
 //! |---|---|
-//! | `images/eye-T.png`, `images/difference-T.png`, `images/heatmap-T.png` | **raw**: one pixel per eye pixel, the view's top row first, nothing drawn on them — for comparing pixel by pixel (tests, other tools, the thread-count check) and for `report.html`, which crops them all alike |
-//! | `pictures/eye-T.png`, `pictures/difference-T.png`, `pictures/heatmap-T.png` | **annotated**: the same pixels under a title (scene, technique, what the picture shows) and a line of settings, with the heat map's colour bar (quantity, unit, log scale, the bar's range and the picture's values) and the difference image's legend (each class's colour and pixel count) — for reading on their own |
+//! | `images/eye-T.png`, `images/difference-T.png`, `images/difference-causes-T.png`, `images/heatmap-T.png` | **raw**: one pixel per eye pixel, the view's top row first, nothing drawn on them — for comparing pixel by pixel (tests, other tools, the thread-count check) and for `report.html`, which crops them all alike |
+//! | `pictures/eye-T.png`, `pictures/difference-T.png`, `pictures/difference-causes-T.png`, `pictures/heatmap-T.png` | **annotated**: the same pixels under a title (scene, technique, what the picture shows) and a line of settings, with the heat map's colour bar (quantity, unit, log scale, the bar's range and the picture's values) and the legends of the difference image and of its causes (each class's colour and pixel count) — for reading on their own |
 //!
 //! `T` is the technique's label with `/` as `-` (`lispsm-minimax`). Both forms are deterministic:
 //! the annotated ones are drawn by `shadowlab-plot` with its embedded font around the raw pixels.
@@ -13,31 +13,37 @@ use shadowlab_raster::image_out;
 use shadowlab_shadow::Technique;
 
 use crate::error::AnalysisError;
-use crate::images::{ClassCounts, difference_legend, footprint_colour_bar, footprint_legend};
+use crate::images::{
+    CauseCounts, ClassCounts, causes_legend, difference_legend, footprint_colour_bar,
+    footprint_legend,
+};
 use crate::labels::{filter_label, technique_label};
 use crate::study::{Pictures, Setting, Study};
 
-/// One of the three pictures of a combination.
+/// One of the four pictures of a combination.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum PictureKind {
     /// The view shaded with the combination's shadows.
     Eye,
     /// Misclassified pixels against the exact truth.
     Difference,
+    /// Misclassified pixels coloured by cause ([`crate::attribution::cause_image`]).
+    Causes,
     /// The texel footprint on screen, as a heat map.
     Heatmap,
 }
 
 impl PictureKind {
-    /// The three, in the order the report shows them.
-    pub const ALL: [Self; 3] = [Self::Eye, Self::Difference, Self::Heatmap];
+    /// The four, in the order the report shows them.
+    pub const ALL: [Self; 4] = [Self::Eye, Self::Difference, Self::Causes, Self::Heatmap];
 
-    /// The name in file names: `eye`, `difference`, `heatmap`.
+    /// The name in file names: `eye`, `difference`, `difference-causes`, `heatmap`.
     #[must_use]
     pub fn key(self) -> &'static str {
         match self {
             Self::Eye => "eye",
             Self::Difference => "difference",
+            Self::Causes => "difference-causes",
             Self::Heatmap => "heatmap",
         }
     }
@@ -48,6 +54,7 @@ impl PictureKind {
         match self {
             Self::Eye => "the view with its shadows",
             Self::Difference => "misclassified pixels against the exact truth",
+            Self::Causes => "misclassified pixels by cause",
             Self::Heatmap => "texel footprint on screen",
         }
     }
@@ -108,6 +115,7 @@ fn pixels(pictures: &Pictures, kind: PictureKind) -> &[[u8; 3]] {
     match kind {
         PictureKind::Eye => &pictures.eye,
         PictureKind::Difference => &pictures.difference,
+        PictureKind::Causes => &pictures.causes,
         PictureKind::Heatmap => &pictures.heatmap,
     }
 }
@@ -128,6 +136,7 @@ pub fn annotated(
             None,
             difference_legend(&ClassCounts::of(&pictures.difference)),
         ),
+        PictureKind::Causes => (None, causes_legend(&CauseCounts::of(&pictures.causes))),
         PictureKind::Heatmap => (
             Some(footprint_colour_bar(pictures.footprint_range)),
             footprint_legend(),

@@ -13,6 +13,7 @@ use shadowlab_plot::{Axis, Figure, LegendPosition, LineStyle, Panel, Series};
 use shadowlab_shadow::{Filter, StepDirection, Technique};
 
 use crate::aliasing::AliasingStats;
+use crate::attribution::Cause;
 use crate::document::{self, Align, Block, Table, code, paragraph, text};
 use crate::error::AnalysisError;
 use crate::study::{Measurement, Outcome, Study};
@@ -168,6 +169,12 @@ fn document(study: &Study) -> Vec<Block> {
             d.falsely_shadowed
         ))]);
     }
+    intro.push(vec![text(
+        "Each misclassified pixel is given one cause, the first that holds: acne (falsely \
+         shadowed by its own surface's depth in the texel under it), peter-panning (falsely lit, \
+         and shadowed by the same lookup without bias), seam (next to a pixel another partition \
+         serves, or in a blend band) and aliasing (the rest).",
+    )]);
     doc.push(Block::Paragraph(intro));
     let techniques = distinct(study.measurements.iter().map(|m| m.setting.technique));
     let resolutions = distinct(study.measurements.iter().map(|m| m.setting.resolution));
@@ -247,6 +254,17 @@ fn document(study: &Study) -> Vec<Block> {
         });
         table(
             &mut doc,
+            "Misclassified pixels by cause: acne / peter-panning / seam / aliasing",
+            &|o| {
+                let c = &o.causes;
+                format!(
+                    "{} / {} / {} / {}",
+                    c.acne, c.peter_panning, c.seam, c.aliasing
+                )
+            },
+        );
+        table(
+            &mut doc,
             "Texel footprint on screen (pixels per texel): max / 99th percentile / mean",
             &|o| {
                 let s = &o.footprint[0];
@@ -260,14 +278,16 @@ fn document(study: &Study) -> Vec<Block> {
         );
         table(
             &mut doc,
-            "Time per frame, ms: total (planning + shadow pass + lookup)",
+            "Time per frame, ms: total (planning + shadow pass + lookup); attributing the errors \
+             (the analysis's time, not in the total)",
             &|o| {
                 format!(
-                    "{:.1} ({:.1} + {:.1} + {:.1})",
+                    "{:.1} ({:.1} + {:.1} + {:.1}); {:.1}",
                     ms(o.time()),
                     ms(o.planning),
                     ms(o.shadow_pass),
-                    ms(o.lookup)
+                    ms(o.lookup),
+                    ms(o.attribution)
                 )
             },
         );
@@ -466,9 +486,10 @@ fn csv(study: &Study) -> Result<String, AnalysisError> {
     // Numbers in Rust's shortest round-trip form (`{:?}`), as the plot crate's tables write them.
     let mut out = String::from(
         "scene,technique,resolution,maps,filter,defined,visible,misclassified,falsely_lit,falsely_shadowed,\
+         acne,peter_panning,seam,aliasing,\
          footprint_max,footprint_p99,footprint_mean,perspective_max,perspective_p99,perspective_mean,\
          projection_max,projection_p99,projection_mean,planning_ms,shadow_pass_ms,lookup_ms,time_ms,\
-         time_spread_ms\n",
+         time_spread_ms,attribution_ms\n",
     );
     for m in &study.measurements {
         let s = &m.setting;
@@ -489,15 +510,17 @@ fn csv(study: &Study) -> Result<String, AnalysisError> {
                     o.errors.falsely_lit,
                     o.errors.falsely_shadowed
                 ));
+                fields.extend(Cause::ALL.map(|cause| o.causes.of(cause).to_string()));
                 for part in &o.footprint {
                     fields.extend(stats_columns(part).iter().map(|v| format!("{v:?}")));
                 }
                 for d in [o.planning, o.shadow_pass, o.lookup, o.time(), o.time_spread] {
                     fields.push(format!("{:?}", ms(d)));
                 }
+                fields.push(format!("{:?}", ms(o.attribution)));
                 writeln!(out, "{}", fields.join(",")).unwrap();
             }
-            Err(_) => writeln!(out, "{prefix},false,{}{}", study.visible, ",".repeat(17)).unwrap(),
+            Err(_) => writeln!(out, "{prefix},false,{}{}", study.visible, ",".repeat(22)).unwrap(),
         }
     }
     Ok(out)
@@ -530,8 +553,12 @@ fn json(study: &Study) -> Value {
                         "misclassified": o.errors.total(),
                         "falsely_lit": o.errors.falsely_lit,
                         "falsely_shadowed": o.errors.falsely_shadowed,
+                        "acne": o.causes.acne,
+                        "peter_panning": o.causes.peter_panning,
+                        "seam": o.causes.seam,
+                        "aliasing": o.causes.aliasing,
                         "footprint": {"total": stats(&o.footprint[0]), "perspective": stats(&o.footprint[1]), "projection": stats(&o.footprint[2])},
-                        "ms": {"planning": ms(o.planning), "shadow_pass": ms(o.shadow_pass), "lookup": ms(o.lookup), "total": ms(o.time()), "spread": ms(o.time_spread)},
+                        "ms": {"planning": ms(o.planning), "shadow_pass": ms(o.shadow_pass), "lookup": ms(o.lookup), "total": ms(o.time()), "spread": ms(o.time_spread), "attribution": ms(o.attribution)},
                     })
                 }
                 Err(reason) => json!({"setting": base, "not_defined": reason}),

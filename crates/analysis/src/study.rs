@@ -14,6 +14,7 @@ use shadowlab_shadow::{
 use shadowlab_trace::Bvh;
 
 use crate::aliasing::{AliasingStats, Footprint, footprints_served, stats};
+use crate::attribution::{Attribution, Causes, attribute, cause_image};
 use crate::classify::{Misclassification, difference_image, misclassification};
 use crate::error::AnalysisError;
 use crate::images::{HeatScale, heatmap, value_range};
@@ -42,8 +43,8 @@ pub struct StudyOptions {
     pub format: DepthFormat,
     /// Also compute the high-resolution uniform map's truth and its disagreement with the exact one.
     pub map_truth: bool,
-    /// Keep pictures (footprint heat map, difference image) of each technique at this resolution,
-    /// with the first partition count and filter; `None`: no pictures.
+    /// Keep pictures (footprint heat map, difference image, its causes) of each technique at this
+    /// resolution, with the first partition count and filter; `None`: no pictures.
     pub pictures_at: Option<u32>,
     /// The scene-optimized map's settings (its step direction is the technique's).
     pub optimal: OptimalOptions,
@@ -73,11 +74,13 @@ pub struct Pictures {
     pub footprint_range: Option<(f64, f64)>,
     /// Misclassified pixels ([`difference_image`]).
     pub difference: Vec<[u8; 3]>,
+    /// Misclassified pixels by cause ([`cause_image`]).
+    pub causes: Vec<[u8; 3]>,
 }
 
 impl Pictures {
     /// The pictures of `setting`'s `shadows` of `scene`, seen in `eye` and judged by `truth`,
-    /// with the footprints `per_pixel`.
+    /// with the footprints `per_pixel` and the errors' causes `attribution`.
     #[must_use]
     pub fn of(
         setting: &Setting,
@@ -85,6 +88,7 @@ impl Pictures {
         (eye, truth): (&EyeImage, &Truth),
         shadows: &Shadows,
         per_pixel: &[Option<Footprint>],
+        attribution: &Attribution,
     ) -> Self {
         let totals: Vec<Option<f64>> = per_pixel.iter().map(|f| f.map(|f| f.total)).collect();
         Self {
@@ -93,6 +97,7 @@ impl Pictures {
             heatmap: heatmap(&totals, eye.width, eye.height, HeatScale::PIXELS_PER_TEXEL),
             footprint_range: value_range(&totals),
             difference: difference_image(truth, &shadows.lit, eye),
+            causes: cause_image(attribution, truth, eye),
         }
     }
 }
@@ -124,6 +129,8 @@ pub struct Measurement {
 pub struct Outcome {
     /// Misclassified pixels against the exact truth.
     pub errors: Misclassification,
+    /// The misclassified pixels by cause ([`crate::attribution`]); they sum to `errors.total()`.
+    pub causes: Causes,
     /// The texel footprint on screen (pixels per texel) over the visible pixels of the first
     /// light: total, perspective part, projection part.
     pub footprint: [AliasingStats; 3],
@@ -133,6 +140,9 @@ pub struct Outcome {
     pub shadow_pass: Duration,
     /// Lookup time.
     pub lookup: Duration,
+    /// The time the analysis took to attribute the errors to causes (first run; not the
+    /// technique's, so not part of [`Outcome::time`]).
+    pub attribution: Duration,
     /// Half the range of the total times over the timing runs ([`StudyOptions::timing_runs`]):
     /// the planning, shadow-pass and lookup times are the median run's, and a time is known to
     /// within ± this. Zero for one run.
@@ -307,21 +317,61 @@ pub fn footprints_of(
     })
 }
 
-/// Measures a combination's shadows against the truth.
-#[must_use]
-pub fn measure(scene: &Scene, truth: &Truth, eye: &EyeImage, shadows: &Shadows) -> Outcome {
-    outcome(truth, shadows, &frame_footprints(scene, eye, shadows))
+/// Measures a combination's shadows, looked up with `filter`, against the truth; `bvh` is the
+/// scene's ray-casting hierarchy, which attributing the errors casts against.
+///
+/// # Errors
+/// [`AnalysisError::BvhMismatch`] if `bvh` is not the scene's.
+pub fn measure(
+    scene: &Scene,
+    truth: &Truth,
+    eye: &EyeImage,
+    shadows: &Shadows,
+    filter: Filter,
+    bvh: &Bvh,
+) -> Result<Outcome, AnalysisError> {
+    let attributed = attributed(scene, eye, truth, shadows, |_, _| filter, bvh)?;
+    Ok(outcome(
+        truth,
+        shadows,
+        &frame_footprints(scene, eye, shadows),
+        &attributed,
+    ))
 }
 
-/// The outcome of shadows whose per-pixel footprints are `per_pixel`.
+/// The attribution of `shadows`' errors ([`attribute`]; `filter(light, partition)`) and its time.
+pub(crate) fn attributed(
+    scene: &Scene,
+    eye: &EyeImage,
+    truth: &Truth,
+    shadows: &Shadows,
+    filter: impl Fn(usize, usize) -> Filter,
+    bvh: &Bvh,
+) -> Result<(Attribution, Duration), AnalysisError> {
+    let start = Instant::now();
+    let attribution = attribute(
+        scene,
+        eye,
+        truth,
+        (&shadows.lights, &shadows.lit),
+        filter,
+        bvh,
+    )?;
+    Ok((attribution, start.elapsed()))
+}
+
+/// The outcome of shadows whose per-pixel footprints are `per_pixel` and whose errors are
+/// attributed as `attribution`, in the time given.
 pub(crate) fn outcome(
     truth: &Truth,
     shadows: &Shadows,
     per_pixel: &[Option<Footprint>],
+    (attribution, attribution_time): &(Attribution, Duration),
 ) -> Outcome {
     let part = |f: fn(&Footprint) -> f64| stats(per_pixel.iter().flatten().map(f));
     Outcome {
         errors: misclassification(truth, &shadows.lit),
+        causes: attribution.counts,
         footprint: [
             part(|f| f.total),
             part(|f| f.perspective),
@@ -330,6 +380,7 @@ pub(crate) fn outcome(
         planning: shadows.timings.planning,
         shadow_pass: shadows.timings.shadow_pass,
         lookup: shadows.timings.lookup,
+        attribution: *attribution_time,
         time_spread: Duration::ZERO,
     }
 }
@@ -412,6 +463,14 @@ pub fn run_observed<E: From<AnalysisError>>(
         let outcome = match render(scene, options, setting, &eye, &bvh) {
             Ok(shadows) => {
                 let per_pixel = frame_footprints(scene, &eye.image, &shadows);
+                let attribution = attributed(
+                    scene,
+                    &eye.image,
+                    &truth,
+                    &shadows,
+                    |_, _| setting.filter,
+                    &bvh,
+                )?;
                 let pictured = options.pictures_at == Some(setting.resolution)
                     && options.partitions.first() == Some(&setting.partitions)
                     && options.filters.first() == Some(&setting.filter);
@@ -422,6 +481,7 @@ pub fn run_observed<E: From<AnalysisError>>(
                         (&eye.image, &truth),
                         &shadows,
                         &per_pixel,
+                        &attribution.0,
                     ));
                 }
                 observe(&Observed {
@@ -431,10 +491,10 @@ pub fn run_observed<E: From<AnalysisError>>(
                     shadows: &shadows,
                     footprints: &per_pixel,
                 })?;
-                let mut measured = outcome(&truth, &shadows, &per_pixel);
+                let mut measured = outcome(&truth, &shadows, &per_pixel, &attribution);
                 let mut runs = vec![shadows.timings];
                 // The timing runs need none of the first run's buffers.
-                drop((shadows, per_pixel));
+                drop((shadows, per_pixel, attribution));
                 for _ in 1..options.timing_runs {
                     runs.push(
                         render(scene, options, setting, &eye, &bvh)
@@ -507,10 +567,15 @@ mod tests {
                 falsely_lit: errors,
                 falsely_shadowed: 0,
             },
+            causes: Causes {
+                aliasing: errors,
+                ..Causes::default()
+            },
             footprint: [stats; 3],
             planning: Duration::ZERO,
             shadow_pass: Duration::ZERO,
             lookup: Duration::ZERO,
+            attribution: Duration::ZERO,
             time_spread: Duration::ZERO,
         };
         time_from_runs(&mut o, runs);

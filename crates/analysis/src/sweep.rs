@@ -115,7 +115,14 @@ pub fn sweep(
             };
             let outcome = match render(&lit_scene, &options, &setting, &eye, &bvh) {
                 Ok(shadows) => {
-                    let o = measure(&lit_scene, &truth, &eye.image, &shadows);
+                    let o = measure(
+                        &lit_scene,
+                        &truth,
+                        &eye.image,
+                        &shadows,
+                        Filter::Nearest,
+                        &bvh,
+                    )?;
                     Ok((o.errors, o.footprint[0].p99))
                 }
                 Err(shadowlab_shadow::ShadowError::NotDefined { reason, .. }) => Err(reason),

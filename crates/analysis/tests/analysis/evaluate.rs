@@ -98,6 +98,7 @@ fn untimed(outcome: &Outcome) -> Outcome {
         planning: Duration::ZERO,
         shadow_pass: Duration::ZERO,
         lookup: Duration::ZERO,
+        attribution: Duration::ZERO,
         time_spread: Duration::ZERO,
         ..outcome.clone()
     }

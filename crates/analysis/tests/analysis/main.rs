@@ -1,6 +1,9 @@
 //! Integration tests of `shadowlab-analysis`, one binary (ripgrep's layout):
 //! - `truth`: hand-built cases (under the box or beside it, surfaces facing away, a spot's cone and
 //!   segment), exact against map truth (bounded disagreement at edges), thread counts, errors;
+//! - `attribution`: scenes where each cause of a misclassified pixel occurs alone (acne,
+//!   peter-panning, aliasing, seams in a blend band and at a boundary), the causes summing to the
+//!   misclassified pixels on every built-in scene, thread counts;
 //! - `classify`: an aligned uniform map misclassifies nothing; counting and the difference
 //!   image as documented;
 //! - `aliasing`: the footprint against closed forms (a tilted plane, an independent construction
@@ -19,6 +22,7 @@
 //! - `support`: scenes, hand-built eye images, the seeded configuration.
 
 mod aliasing;
+mod attribution;
 mod classify;
 mod evaluate;
 mod images;

@@ -2,7 +2,8 @@
 //! under a title naming scene, technique and settings, the difference image's legend agreeing
 //! with the counted misclassifications, and every byte the same on any thread count.
 
-use shadowlab_analysis::images::ClassCounts;
+use shadowlab_analysis::attribution::Cause;
+use shadowlab_analysis::images::{CauseCounts, ClassCounts};
 use shadowlab_analysis::pictures::{self, PictureKind};
 use shadowlab_analysis::study::{self, Study, StudyOptions};
 use shadowlab_raster::DepthFormat;
@@ -65,13 +66,13 @@ fn find(outer: &(u32, u32, Vec<[u8; 3]>), inner: &(u32, u32, Vec<[u8; 3]>)) -> O
     None
 }
 
-/// Claim: each technique has its three raw pictures (the eye image's size, its top row first)
-/// and three annotated ones that hold the raw pixels unchanged inside a larger canvas.
+/// Claim: each technique has its four raw pictures (the eye image's size, its top row first)
+/// and four annotated ones that hold the raw pixels unchanged inside a larger canvas.
 #[test]
 fn annotated_pictures_hold_the_raw_ones() {
     let study = tiny_study();
     let files = pictures::files(&study).unwrap();
-    assert_eq!(files.len(), 2 * 6);
+    assert_eq!(files.len(), 2 * 8);
     for p in &study.pictures {
         for kind in PictureKind::ALL {
             let raw_path = kind.raw_path(p.setting.technique);
@@ -92,6 +93,7 @@ fn annotated_pictures_hold_the_raw_ones() {
             let source = match kind {
                 PictureKind::Eye => &p.eye,
                 PictureKind::Difference => &p.difference,
+                PictureKind::Causes => &p.causes,
                 PictureKind::Heatmap => &p.heatmap,
             };
             assert_eq!(&bottom_up, source, "{raw_path}");
@@ -108,6 +110,10 @@ fn annotated_pictures_hold_the_raw_ones() {
     assert!(stems.contains(&"images/heatmap-lispsm.png"), "{stems:?}");
     assert!(
         stems.contains(&"pictures/difference-uniform.png"),
+        "{stems:?}"
+    );
+    assert!(
+        stems.contains(&"images/difference-causes-uniform.png"),
         "{stems:?}"
     );
 }
@@ -130,6 +136,9 @@ fn titles_name_scene_technique_and_settings() {
     let picture = pictures::annotated(&study, &study.pictures[1], PictureKind::Difference).unwrap();
     assert_eq!(picture.legend.len(), 5);
     assert!(picture.colour_bar.is_none());
+    let causes = pictures::annotated(&study, &study.pictures[1], PictureKind::Causes).unwrap();
+    assert_eq!(causes.legend.len(), 7);
+    assert!(causes.colour_bar.is_none());
     let heat = pictures::annotated(&study, &study.pictures[1], PictureKind::Heatmap).unwrap();
     let bar = heat.colour_bar.expect("a colour bar");
     assert_eq!((bar.low, bar.high), (0.1, 100.0));
@@ -141,7 +150,8 @@ fn titles_name_scene_technique_and_settings() {
 }
 
 /// Claim: with one light, the difference image's falsely lit and falsely shadowed pixels are the
-/// study's counts, and its classes cover every pixel.
+/// study's counts, the causes picture's classes are its counts per cause, and each picture's
+/// classes cover every pixel.
 #[test]
 fn the_legend_counts_agree_with_the_measurement() {
     let study = tiny_study();
@@ -160,6 +170,22 @@ fn the_legend_counts_agree_with_the_measurement() {
         assert_eq!(
             counts.background,
             u64::from(study.width * study.height) - study.visible
+        );
+        let causes = CauseCounts::of(&p.causes);
+        assert_eq!(
+            [
+                causes.acne,
+                causes.peter_panning,
+                causes.seam,
+                causes.aliasing
+            ],
+            Cause::ALL.map(|c| measured.causes.of(c)),
+        );
+        let all: u64 = causes.classes().iter().map(|c| c.2).sum();
+        assert_eq!(all, u64::from(study.width * study.height));
+        assert_eq!(
+            (causes.correct_lit, causes.correct_shadow, causes.background),
+            (counts.correct_lit, counts.correct_shadow, counts.background)
         );
     }
 }

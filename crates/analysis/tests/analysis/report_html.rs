@@ -220,7 +220,7 @@ const INTERACTIONS: &str = r#"<script>
       bubbles: true, clientX: box.left + 0.25 * box.width, clientY: box.top + 0.75 * box.height
     }));
     var state = function () {
-      return ['eye', 'difference', 'heatmap'].map(function (kind) {
+      return ['eye', 'difference', 'difference-causes', 'heatmap'].map(function (kind) {
         var image = document.getElementById('picture-' + kind);
         return [image.getAttribute('src'), image.style.width, image.style.left, image.style.top];
       });
@@ -273,7 +273,8 @@ fn report_html_works_in_a_browser() {
         "the scene name is not escaped"
     );
     let named = named_pictures(&html);
-    assert_eq!(named.len(), 2 * 6, "{named:?}");
+    // Two techniques, four pictures each, raw and annotated.
+    assert_eq!(named.len(), 2 * 8, "{named:?}");
     for name in &named {
         assert!(
             dir.path().join(name).is_file(),
@@ -337,7 +338,7 @@ fn report_html_works_in_a_browser() {
     let percent = |v: &serde_json::Value| -> f64 {
         v.as_str().unwrap().trim_end_matches('%').parse().unwrap()
     };
-    let kinds = ["eye", "difference", "heatmap"];
+    let kinds = ["eye", "difference", "difference-causes", "heatmap"];
     for (k, kind) in kinds.iter().enumerate() {
         let before = &test["before"][k];
         let after = &test["after"][k];
