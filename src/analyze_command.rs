@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 
 use shadowlab_analysis::report::{filter_label, technique_label};
-use shadowlab_analysis::{report, study, sweep, temporal};
+use shadowlab_analysis::{bias_sweep, report, study, sweep, temporal};
 use shadowlab_raster::DepthFormat;
 use shadowlab_scene::Scene;
 use shadowlab_shadow::{Bias, Splits};
@@ -89,6 +89,9 @@ pub(crate) fn analyze(args: &AnalyzeArgs) -> Result<(), CliError> {
         .exporting(args.export),
         args.memory.memory_budget,
     )?;
+    if let Some(biases) = &args.biases {
+        return sweep_biases(&scene, &options, biases, out);
+    }
     let bar = progress::bar("analyze");
     let mut set = out.begin("analyze")?;
     let mut exporter = args.export.then(Exporter::new);
@@ -169,6 +172,34 @@ pub(crate) fn analyze(args: &AnalyzeArgs) -> Result<(), CliError> {
         ))?;
     }
     print_line(&out.path().join("report.md").display().to_string())
+}
+
+/// `analyze --biases`: the study at each bias (the default ladder if none is named), written as
+/// the bias sweep's report.
+fn sweep_biases(
+    scene: &Scene,
+    options: &study::StudyOptions,
+    biases: &[Bias],
+    out: OutputDir,
+) -> Result<(), CliError> {
+    let biases = if biases.is_empty() {
+        bias_sweep::default_biases()
+    } else {
+        biases.to_vec()
+    };
+    let bar = progress::bar("bias sweep");
+    let points = bias_sweep::bias_sweep(scene, options, &biases, |done, total| {
+        bar.set_length(total as u64);
+        bar.set_position(done as u64);
+    });
+    bar.finish_and_clear();
+    let points = points.map_err(|e| CliError::Input(format!("{}: --biases: {e}", scene.name)))?;
+    let mut set = out.begin("analyze")?;
+    for (name, bytes) in bias_sweep::write(&scene.name, &points) {
+        set.add(&name, &bytes)?;
+    }
+    set.finish()?;
+    print_line(&out.path().join("bias-sweep.md").display().to_string())
 }
 
 /// Why `analyze` stopped: the study's error, or an output's while exporting.

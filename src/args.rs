@@ -173,6 +173,12 @@ pub(crate) struct AnalyzeArgs {
     /// (`Bias::DEFAULT`).
     #[arg(long, allow_hyphen_values = true, value_parser = bias_spec)]
     pub(crate) bias: Option<Bias>,
+    /// Sweep the bias instead of measuring one: the study at each of these biases (space-separated
+    /// specs, as --bias takes them; with no value, a ladder of every family), its errors split by
+    /// cause, written as bias-sweep.md and bias-sweep.csv with the Pareto front of acne against
+    /// peter-panning. Not for the engines' presets, which read their maps with their own bias.
+    #[arg(long, num_args = 0.., allow_hyphen_values = true, value_parser = bias_spec, conflicts_with_all = ["bias", "export", "map_truth"])]
+    pub(crate) biases: Option<Vec<Bias>>,
     /// Also compare the exact truth with a 4096² uniform map's, as Chong and Gortler's truth was.
     #[arg(long)]
     pub(crate) map_truth: bool,

@@ -311,3 +311,114 @@ fn bad_input_exits_with_2_names_the_problem_and_writes_nothing() {
         assert!(!Path::new(target).exists(), "{args:?} wrote {target}");
     }
 }
+
+/// Claim: the engines' presets and SDSM are techniques of `analyze`: a preset's combination has its
+/// engine's cascade count as its maps whatever `--partitions` says, and every combination's errors
+/// are given causes that sum to them.
+#[test]
+fn analyze_measures_engine_presets_and_sdsm_with_causes() {
+    let scenes = tempfile::tempdir().unwrap();
+    let scene = scene_file(scenes.path());
+    let out = tempfile::tempdir().unwrap();
+    let output = shadowlab(
+        &[
+            "analyze",
+            &scene,
+            "--techniques",
+            "bevy,godot:unsnapped,unity,sdsm:kmeans",
+            "--resolutions",
+            "256",
+            "--partitions",
+            "2",
+            "--timing-runs",
+            "1",
+            "--out",
+            out.path().to_str().unwrap(),
+        ],
+        None,
+    );
+    assert!(output.status.success(), "{}", stderr(&output));
+    let json: serde_json::Value =
+        serde_json::from_str(&fs::read_to_string(out.path().join("results.json")).unwrap())
+            .unwrap();
+    let measurements = json["measurements"].as_array().unwrap();
+    let maps: Vec<(String, u64)> = measurements
+        .iter()
+        .map(|m| {
+            (
+                m["setting"]["technique"].as_str().unwrap().to_string(),
+                m["setting"]["maps"].as_u64().unwrap(),
+            )
+        })
+        .collect();
+    assert_eq!(
+        maps,
+        [
+            ("bevy".to_string(), 4),
+            ("godot/unsnapped".to_string(), 4),
+            ("unity".to_string(), 1),
+            ("sdsm/kmeans".to_string(), 2)
+        ]
+    );
+    for m in measurements {
+        let causes: u64 = ["acne", "peter_panning", "aliasing", "seam"]
+            .iter()
+            .map(|k| m[k].as_u64().unwrap())
+            .sum();
+        assert_eq!(causes, m["misclassified"].as_u64().unwrap(), "{m}");
+    }
+}
+
+/// Claim: `analyze --biases` sweeps the bias: a row per bias and combination, the Pareto front of
+/// acne against peter-panning marked, the best bias named; no bias, the ladder; and a preset,
+/// which reads its maps with its engine's bias, is refused with exit 2.
+#[test]
+fn analyze_sweeps_biases_and_refuses_presets() {
+    let scenes = tempfile::tempdir().unwrap();
+    let scene = scene_file(scenes.path());
+    let out = tempfile::tempdir().unwrap();
+    let output = shadowlab(
+        &[
+            "analyze",
+            &scene,
+            "--techniques",
+            "uniform",
+            "--resolutions",
+            "256",
+            "--out",
+            out.path().to_str().unwrap(),
+            "--biases",
+            "none",
+            "constant:1e-3",
+            "slope:2,1e-5+normal:1",
+        ],
+        None,
+    );
+    assert!(output.status.success(), "{}", stderr(&output));
+    let csv = fs::read_to_string(out.path().join("bias-sweep.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 1 + 3, "{csv}");
+    let none = csv.lines().nth(1).unwrap();
+    let acne: u64 = none.split(',').nth(8).unwrap().parse().unwrap();
+    assert!(acne > 0, "no bias, no acne? {none}");
+    assert!(csv.contains("\"slope:2.0,1e-5+normal:1.0\""), "{csv}");
+    let md = fs::read_to_string(out.path().join("bias-sweep.md")).unwrap();
+    assert!(md.contains('★') && md.contains("**`"), "{md}");
+    assert!(!out.path().join("report.md").exists());
+
+    let refused = tempfile::tempdir().unwrap();
+    let output = shadowlab(
+        &[
+            "analyze",
+            &scene,
+            "--techniques",
+            "bevy",
+            "--out",
+            refused.path().to_str().unwrap(),
+            "--biases",
+        ],
+        None,
+    );
+    assert_eq!(output.status.code(), Some(2), "{}", stderr(&output));
+    assert!(stderr(&output).contains("bevy reads its maps"), "{}", stderr(&output));
+    assert!(fs::read_dir(refused.path()).unwrap().next().is_none());
+}

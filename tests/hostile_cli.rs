@@ -539,7 +539,7 @@ fn absurd_flags_name_the_flag_and_the_range() {
             &[],
             &[
                 "'--technique <TECHNIQUE>'",
-                "applies to lispsm, logarithmic and optimal only",
+                "applies to lispsm, logarithmic, optimal, sdsm and the engines' presets only",
             ],
         ),
         refused(

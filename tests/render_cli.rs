@@ -249,7 +249,7 @@ fn bad_input_exits_with_2_and_names_the_problem() {
                 "--param".into(),
                 "gmnpr".into(),
             ],
-            "applies to lispsm, logarithmic and optimal only",
+            "applies to lispsm, logarithmic, optimal, sdsm and the engines' presets only",
         ),
         (
             vec![

@@ -195,7 +195,7 @@ fn bad_stated_values_exit_2_and_name_the_flag_or_field() {
                 "--lambda".into(),
                 "0.2".into(),
             ],
-            "applies to lispsm, logarithmic and optimal only",
+            "applies to lispsm, logarithmic, optimal, sdsm and the engines' presets only",
         ),
         (
             vec![

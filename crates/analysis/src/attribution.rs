@@ -206,7 +206,7 @@ pub struct Attribution {
 /// The lookup that tells what the bias did: no bias at all, the technique's filter. The one place
 /// this module names a bias.
 fn unbiased(filter: Filter) -> Lookup {
-    Lookup::new(Bias::None, filter)
+    Lookup::new(Bias::NONE, filter)
 }
 
 /// One light's maps as attribution reads them.

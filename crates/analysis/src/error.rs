@@ -53,6 +53,12 @@ pub enum AnalysisError {
         /// Triangles in the scene's mesh.
         mesh: usize,
     },
+    /// A bias sweep was asked of a technique that reads its maps with a bias of its own (an
+    /// engine's preset).
+    NotSwept {
+        /// The technique's spec.
+        technique: String,
+    },
     /// A figure could not be drawn (`shadowlab-plot`).
     Plot(PlotError),
     /// A heat-map scale that is not `0 < low < high < ∞`.
@@ -101,6 +107,11 @@ impl fmt::Display for AnalysisError {
                 "the ray-casting hierarchy holds {bvh} triangles but the scene's mesh {mesh}: it \
                  was built over another mesh"
             ),
+            Self::NotSwept { technique } => write!(
+                f,
+                "{technique} reads its maps with its engine's own bias, so a bias sweep does not \
+                 apply to it; sweep the bias of a technique of the papers or SDSM"
+            ),
             Self::Plot(e) => write!(f, "drawing a figure: {e}"),
             Self::HeatScale { low, high } => write!(
                 f,
@@ -120,6 +131,7 @@ impl std::error::Error for AnalysisError {
             Self::EyeImageSize { .. }
             | Self::TriangleOutOfRange { .. }
             | Self::BvhMismatch { .. }
+            | Self::NotSwept { .. }
             | Self::HeatScale { .. } => None,
         }
     }

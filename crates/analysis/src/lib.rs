@@ -47,6 +47,7 @@
 
 pub mod aliasing;
 pub mod attribution;
+pub mod bias_sweep;
 pub mod classify;
 mod document;
 mod error;

@@ -13,9 +13,9 @@ use shadowlab_hull::ViewPose;
 use shadowlab_raster::{DepthFormat, EyeImage, NO_TRIANGLE};
 use shadowlab_scene::{BUILTIN_SCENES, Mesh, Scene, builtin_scene, procedural};
 use shadowlab_shadow::{
-    Beyond, Bias, Filter, FocusPolicy, LightMaps, LightSetup, LightSource, Lookup, MapOptions,
-    MapSource, Partition, PartitionMap, Selection, SelectionRule, Shadows, Splits, Technique,
-    eye_pass, scene_eye, served, shadows_of,
+    Beyond, Bias, DepthComparison, Filter, FocusPolicy, LightMaps, LightSetup, LightSource, Lookup,
+    MapOptions, MapSource, Partition, PartitionMap, Selection, SelectionRule, Shadows, Splits,
+    Technique, eye_pass, scene_eye, served, shadows_of,
 };
 use shadowlab_trace::Bvh;
 
@@ -142,7 +142,7 @@ fn a_lone_plane_without_bias_has_only_acne() {
         study.measurements[0].outcome.clone().unwrap()
     };
     for key in ["uniform", "lispsm", "psm", "logarithmic"] {
-        let raw = study(Technique::parse(key, None).unwrap(), Bias::None);
+        let raw = study(Technique::parse(key, None).unwrap(), Bias::NONE);
         assert_eq!(raw.errors.falsely_lit, 0, "{key}: {:?}", raw.errors);
         assert!(raw.errors.falsely_shadowed > 500, "{key}: {:?}", raw.errors);
         assert_eq!(
@@ -195,7 +195,10 @@ fn a_resting_box_under_a_large_bias_has_only_peter_panning() {
 
     // The box stands 2√2 ≈ 2.83 above the ground along the light: 0.073 in window depth (depths
     // 1 to 40); a bias of 0.1 lights all of its shadow.
-    let biased = Lookup::new(Bias::Constant { offset: 0.1 }, Filter::Nearest);
+    let biased = Lookup::new(
+        Bias::new(DepthComparison::Constant { offset: 0.1 }),
+        Filter::Nearest,
+    );
     let shadows = judged.shadows(&partitions, 256, &biased, false);
     let (errors, attribution) = judged.attribute(&shadows, Filter::Nearest);
     assert_eq!(errors.falsely_shadowed, 0, "{errors:?}");
@@ -207,7 +210,7 @@ fn a_resting_box_under_a_large_bias_has_only_peter_panning() {
 
     // The design: with no bias at all the aligned map lights no point in shadow — every texel of
     // the shadow holds the box.
-    let unbiased = Lookup::new(Bias::None, Filter::Nearest);
+    let unbiased = Lookup::new(Bias::NONE, Filter::Nearest);
     let shadows = judged.shadows(&partitions, 256, &unbiased, false);
     let (errors, _) = judged.attribute(&shadows, Filter::Nearest);
     assert_eq!(errors.falsely_lit, 0, "{errors:?}");
@@ -254,7 +257,10 @@ fn strip_scene() -> Judged {
 
 /// The lookup of the strip tests: a small constant bias.
 fn small_bias() -> Lookup {
-    Lookup::new(Bias::Constant { offset: 1e-5 }, Filter::Nearest)
+    Lookup::new(
+        Bias::new(DepthComparison::Constant { offset: 1e-5 }),
+        Filter::Nearest,
+    )
 }
 
 /// Claim: a thin strip far above the ground, straight under the sun, in a coarse map whose texels
