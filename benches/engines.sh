@@ -24,7 +24,7 @@ for scene in outdoor dueling-frusta cad-lattice chess-spot bunny; do
   "$bin" analyze "$scene" --techniques "$studied" --partitions 4 --resolutions "$side" \
     --timing-runs 3 --out "$out/$scene" >/dev/null
   "$bin" temporal "$scene" --frames "$frames" --resolution "$side" \
-    --techniques "$engines,$unsnapped,sdsm,lispsm" --out "$out/$scene-walk" >/dev/null
+    --techniques "$engines,$unsnapped,sdsm,lispsm,uniform" --out "$out/$scene-walk" >/dev/null
   python3 - "$scene" "$out/$scene/results.json" "$out/$scene-walk/temporal.csv" <<'EOF'
 import csv, json, sys
 scene, results, walk = sys.argv[1:4]
@@ -44,11 +44,12 @@ for m in data["measurements"]:
     if "misclassified" not in m:
         print(f"| {t} | | not defined: {m.get('error', '')} | | | | | | | |")
         continue
-    texels = m.get("texels", s["maps"] * s["resolution"] ** 2) / 1e6
+    texels = m["texels"] / 1e6
     un = surface.get(t + "/unsnapped")
-    shimmer = f"{mean(surface.get(t, [])):.1f}" + (f" / {mean(un):.1f}" if un else "")
+    snapped = surface.get(t)
+    shimmer = (f"{mean(snapped):.1f}" if snapped else "—") + (f" / {mean(un):.1f}" if un else "")
     causes = [m.get(k, "") for k in ("acne", "peter_panning", "aliasing", "seam")]
-    print(f"| {t} | {s['maps']} | {m['misclassified']} | " + " | ".join(map(str, causes))
+    print(f"| {t} | {m['texels'] // s['resolution'] ** 2} | {m['misclassified']} | " + " | ".join(map(str, causes))
           + f" | {shimmer} | {texels:.1f} | {m['ms']['total']:.1f} |")
 EOF
 done

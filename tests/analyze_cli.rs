@@ -419,6 +419,10 @@ fn analyze_sweeps_biases_and_refuses_presets() {
         None,
     );
     assert_eq!(output.status.code(), Some(2), "{}", stderr(&output));
-    assert!(stderr(&output).contains("bevy reads its maps"), "{}", stderr(&output));
+    assert!(
+        stderr(&output).contains("bevy reads its maps"),
+        "{}",
+        stderr(&output)
+    );
     assert!(fs::read_dir(refused.path()).unwrap().next().is_none());
 }

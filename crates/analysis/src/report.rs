@@ -557,6 +557,7 @@ fn json(study: &Study) -> Value {
                         "peter_panning": o.causes.peter_panning,
                         "seam": o.causes.seam,
                         "aliasing": o.causes.aliasing,
+                        "texels": o.texels,
                         "footprint": {"total": stats(&o.footprint[0]), "perspective": stats(&o.footprint[1]), "projection": stats(&o.footprint[2])},
                         "ms": {"planning": ms(o.planning), "shadow_pass": ms(o.shadow_pass), "lookup": ms(o.lookup), "total": ms(o.time()), "spread": ms(o.time_spread), "attribution": ms(o.attribution)},
                     })

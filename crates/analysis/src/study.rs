@@ -131,6 +131,9 @@ pub struct Outcome {
     pub errors: Misclassification,
     /// The misclassified pixels by cause ([`crate::attribution`]); they sum to `errors.total()`.
     pub causes: Causes,
+    /// Texels spent: the sum of every map's side² over every light — the maps' memory in texels
+    /// (a preset's cascades and a merged SDSM count as they were made, whatever the setting asked).
+    pub texels: u64,
     /// The texel footprint on screen (pixels per texel) over the visible pixels of the first
     /// light: total, perspective part, projection part.
     pub footprint: [AliasingStats; 3],
@@ -372,6 +375,12 @@ pub(crate) fn outcome(
     Outcome {
         errors: misclassification(truth, &shadows.lit),
         causes: attribution.counts,
+        texels: shadows
+            .lights
+            .iter()
+            .flat_map(|l| &l.maps)
+            .map(|(_, map)| u64::from(map.resolution) * u64::from(map.resolution))
+            .sum(),
         footprint: [
             part(|f| f.total),
             part(|f| f.perspective),
@@ -571,6 +580,7 @@ mod tests {
                 aliasing: errors,
                 ..Causes::default()
             },
+            texels: 0,
             footprint: [stats; 3],
             planning: Duration::ZERO,
             shadow_pass: Duration::ZERO,
