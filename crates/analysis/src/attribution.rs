@@ -24,9 +24,10 @@
 //!      stores) only the part in front is cast, toward or from infinity, so the first hit is the
 //!      stored surface's. The logarithmic map's ray is its `texel_ray`, the very ray it was cast
 //!      with. A ray the caster rejects (a degenerate map) finds nothing: no acne.
-//! 2. **Peter-panning** ([`Cause::PeterPanning`]) — *falsely lit*, and the same maps looked up
-//!    **with no bias at all** (`Bias::None`, the same filter, served, blended and faded as the
-//!    technique's) say shadowed: the bias lit it.
+//! 2. **Peter-panning** ([`Cause::PeterPanning`]) — *falsely lit*, the same maps looked up
+//!    **with no bias at all** (`Bias::NONE`, the same filter, served, blended and faded as the
+//!    technique's) say shadowed, and the texel under the point does **not** hold its own surface
+//!    (the acne test of 1, negated): a true occluder within the bias's reach, which the bias lit.
 //! 3. **Seam** ([`Cause::Seam`]) — for a light with more than one partition, a pair not caused as
 //!    above whose pixel lies **in a blend band** (served by two maps) or has a **4-neighbour**
 //!    (a pixel that sees a surface) **served by another partition**.
@@ -41,10 +42,12 @@
 //! - *The blocking test is unbiased.* "In front of the point" compares raw depths; the bias is
 //!   what the technique added, and for the nearest texel a falsely shadowed point is behind the
 //!   texel's depth anyway (any bias ≥ 0).
-//! - *Peter-panning is judged on the lookup, not on a ray:* one lookup more per falsely lit pair.
-//!   A falsely lit point at a shadow's edge whose texel holds its own surface counts as
-//!   peter-panning where the unbiased lookup would have acne there. VSM applies no bias, so it has
-//!   no peter-panning: its light bleeding is aliasing.
+//! - *Peter-panning needs a true occluder in the texel:* one lookup more per falsely lit pair, and
+//!   one ray where the unbiased lookup shadows. Without the ray, a falsely lit point at a shadow's
+//!   edge whose texel holds its own surface — where the unbiased lookup would have acne — counted
+//!   as peter-panning: on `outdoor` most of the falsely lit pixels of every technique. The bias
+//!   did light it, but only out of its own acne; the error is the texel's, aliasing. VSM applies
+//!   no bias, so it has no peter-panning: its light bleeding is aliasing.
 //! - *Seams compare partition indices* of served pixels: a neighbour beyond the shadowed range
 //!   (`Beyond::Lit`, served by none) is no other partition, and the fade is not a seam.
 //! - *The 4-neighbourhood is the image's*, across surfaces: a pixel at a seam is one whose
@@ -342,7 +345,7 @@ fn cause_of(
         if classified_lit {
             let unbiased = serving
                 .combine(|k| maps.unbiased[k].lit_fraction(&shadow.maps[k].1, position, normal));
-            if unbiased < LIT_THRESHOLD {
+            if unbiased < LIT_THRESHOLD && !self_blocked(context, maps, serving.index, pixel) {
                 return Cause::PeterPanning;
             }
         } else if self_blocked(context, maps, serving.index, pixel) {

@@ -19,11 +19,23 @@ use crate::report::filter_label;
 /// own), in [`Conventions::LIBRARY`], so that reading it back changes no bit.
 ///
 /// # Errors
-/// [`SetupError::NotRepresentable`] for the logarithmic map (`logarithmic`, `logarithmic:faces`):
+/// [`SetupError::NotRepresentable`] for an engine's preset (its per-cascade bias and selection
+/// are not in the format) and for the logarithmic map (`logarithmic`, `logarithmic:faces`):
 /// it is not a matrix per partition (docs/setup-format.md); [`SetupError::Analysis`] if the
 /// technique cannot be planned for the scene.
 pub fn setup_for(scene: &Scene, options: &FrameOptions) -> Result<SetupFile, SetupError> {
     let technique = options.plan.technique;
+    if let Technique::Engine(..) = technique {
+        return Err(SetupError::NotRepresentable {
+            technique,
+            reason: format!(
+                "an engine's preset reads its cascades with its engine's bias per cascade and \
+                 chooses between them by its own rule (blend bands, culling spheres, a shadow \
+                 distance, a fade), which version {VERSION} of the set-up format has no fields \
+                 for; measure the preset with analyze"
+            ),
+        });
+    }
     let (eye, nearest_visible) = eye_pass(scene)?;
     let lights = plan_frame(scene, options, nearest_visible, Some(&eye))?
         .iter()
