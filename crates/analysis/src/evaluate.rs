@@ -5,8 +5,8 @@
 //! Each frame is drawn through its camera's matrices (the scene's camera where the frame has
 //! none); each partition's map is rendered from its matrices with shadowlab's rasterizer, or read
 //! from its depth image and stored in its depth format, and every visible pixel is looked up in
-//! the map of the partition that serves it ([`shadowlab_shadow::serving`]: the last whose `near` is
-//! at most the pixel's eye depth) with that partition's bias and filter — the lookups `analyze`
+//! the map of the partition that serves it ([`shadowlab_shadow::served`]: the first whose `far`
+//! lies beyond the pixel's eye depth) with that partition's bias and filter — the lookups `analyze`
 //! makes. The result of a frame is a [`Study`] of one measurement, which `report::report` writes
 //! as it writes `analyze`'s; over two or more frames, the shimmering pixels of consecutive frames
 //! (first light) as [`crate::temporal`] counts them.
