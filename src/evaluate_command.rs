@@ -119,17 +119,14 @@ pub(crate) fn run(args: &EvaluateArgs) -> Result<(), CliError> {
     {
         print_line(&format!(
             "{:<24} {:>5}² {} map(s) {:>8} misclassified ({} falsely lit, {} falsely shadowed; \
-             {} acne, {} peter-panning, {} seam, {} aliasing)",
+             {})",
             technique_label(m.setting.technique),
             m.setting.resolution,
             m.setting.partitions,
             o.errors.total(),
             o.errors.falsely_lit,
             o.errors.falsely_shadowed,
-            o.causes.acne,
-            o.causes.peter_panning,
-            o.causes.seam,
-            o.causes.aliasing
+            o.causes
         ))?;
     }
     if let Some(Stability {

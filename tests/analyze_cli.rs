@@ -361,11 +361,23 @@ fn analyze_measures_engine_presets_and_sdsm_with_causes() {
         ]
     );
     for m in measurements {
-        let causes: u64 = ["acne", "peter_panning", "aliasing", "seam"]
-            .iter()
-            .map(|k| m[k].as_u64().unwrap())
-            .sum();
-        assert_eq!(causes, m["misclassified"].as_u64().unwrap(), "{m}");
+        let count = |k: &str| m[k].as_u64().unwrap();
+        let causes: u64 = [
+            "acne",
+            "peter_panning",
+            "seam_band",
+            "seam_boundary",
+            "aliasing",
+        ]
+        .map(count)
+        .iter()
+        .sum();
+        assert_eq!(causes, count("misclassified"), "{m}");
+        assert_eq!(
+            count("seam"),
+            count("seam_band") + count("seam_boundary"),
+            "{m}"
+        );
     }
 }
 

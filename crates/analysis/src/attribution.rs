@@ -1,10 +1,11 @@
 //! Why a pixel is misclassified: every misclassified (light, pixel) pair of a combination given
-//! one cause — acne, peter-panning, a partition seam, or aliasing.
+//! one cause — acne, peter-panning, a partition seam (in a blend band or at a boundary), or
+//! aliasing.
 //!
 //! # The causes, in precedence
 //! A pair is misclassified as [`crate::classify`] counts it (visible, inside the light's cone, lit
 //! fraction on the other side of [`LIT_THRESHOLD`] from the exact truth). It gets the first cause
-//! whose rule holds, in this order; so the four counts are exclusive and sum to the misclassified
+//! whose rule holds, in this order; so the five counts are exclusive and sum to the misclassified
 //! pairs ([`Causes::total`] equals `Misclassification::total`).
 //!
 //! 1. **Acne** ([`Cause::Acne`]) — *falsely shadowed*, and the map blocks the point with its own
@@ -28,10 +29,12 @@
 //!    **with no bias at all** (`Bias::NONE`, the same filter, served, blended and faded as the
 //!    technique's) say shadowed, and the texel under the point does **not** hold its own surface
 //!    (the acne test of 1, negated): a true occluder within the bias's reach, which the bias lit.
-//! 3. **Seam** ([`Cause::Seam`]) — for a light with more than one partition, a pair not caused as
-//!    above whose pixel lies **in a blend band** (served by two maps) or has a **4-neighbour**
-//!    (a pixel that sees a surface) **served by another partition**.
-//! 4. **Aliasing** ([`Cause::Aliasing`]) — the rest: too few texels where the pixel samples,
+//! 3. **Seam in a blend band** ([`Cause::SeamBand`]) — for a light with more than one partition,
+//!    a pair not caused as above whose pixel lies **in a blend band** (served by two maps).
+//! 4. **Seam at a boundary** ([`Cause::SeamBoundary`]) — likewise, outside any band, a pixel with
+//!    a **4-neighbour** (a pixel that sees a surface) **served by another partition**: the hard
+//!    boundary between cascades, or a band's edge.
+//! 5. **Aliasing** ([`Cause::Aliasing`]) — the rest: too few texels where the pixel samples,
 //!    wherever the shadow's edge is.
 //!
 //! # The choices, named
@@ -63,11 +66,12 @@
 //!
 //! # The picture
 //! [`cause_image`] colours each pixel by the first cause (in the order above) of any light's
-//! misclassified pair: [`ACNE`], [`PETER_PANNING`], [`SEAM`], [`ALIASING`] — Okabe and Ito's
-//! reddish purple, orange, sky blue and bluish green, none of them the difference image's two
-//! error colours — and correct pixels and the background as [`crate::classify::difference_image`]
+//! misclassified pair: [`ACNE`], [`PETER_PANNING`], [`SEAM_BAND`], [`SEAM_BOUNDARY`],
+//! [`ALIASING`] — Okabe and Ito's reddish purple, orange, sky blue, blue and bluish green, none of
+//! them the difference image's two error colours — and correct pixels and the background as [`crate::classify::difference_image`]
 //! does.
 
+use std::fmt;
 use std::ops::AddAssign;
 
 use glam::{DMat4, DVec3, DVec4};
@@ -93,35 +97,59 @@ pub enum Cause {
     Acne,
     /// Falsely lit because of the bias.
     PeterPanning,
-    /// At a boundary between two partitions, or in their blend band.
-    Seam,
+    /// In the blend band of two partitions.
+    SeamBand,
+    /// At a hard boundary between two partitions: a 4-neighbour is served by another.
+    SeamBoundary,
     /// The rest.
     Aliasing,
 }
 
 impl Cause {
-    /// The four, in precedence order.
-    pub const ALL: [Self; 4] = [Self::Acne, Self::PeterPanning, Self::Seam, Self::Aliasing];
+    /// The five, in precedence order.
+    pub const ALL: [Self; 5] = [
+        Self::Acne,
+        Self::PeterPanning,
+        Self::SeamBand,
+        Self::SeamBoundary,
+        Self::Aliasing,
+    ];
 
-    /// The key in `results.json` and `results.csv`: `acne`, `peter_panning`, `seam`, `aliasing`.
+    /// The key in `results.json` and `results.csv`: `acne`, `peter_panning`, `seam_band`,
+    /// `seam_boundary`, `aliasing`.
     #[must_use]
     pub fn key(self) -> &'static str {
         match self {
             Self::Acne => "acne",
             Self::PeterPanning => "peter_panning",
-            Self::Seam => "seam",
+            Self::SeamBand => "seam_band",
+            Self::SeamBoundary => "seam_boundary",
             Self::Aliasing => "aliasing",
         }
     }
 
-    /// The name in prose and legends: `acne`, `peter-panning`, `seam`, `aliasing`.
+    /// The name in prose, legends and `report.html`'s classes: `acne`, `peter-panning`,
+    /// `seam-band`, `seam-boundary`, `aliasing`.
     #[must_use]
     pub fn label(self) -> &'static str {
         match self {
             Self::Acne => "acne",
             Self::PeterPanning => "peter-panning",
-            Self::Seam => "seam",
+            Self::SeamBand => "seam-band",
+            Self::SeamBoundary => "seam-boundary",
             Self::Aliasing => "aliasing",
+        }
+    }
+
+    /// What it means, as the causes picture's legend says it.
+    #[must_use]
+    pub fn meaning(self) -> &'static str {
+        match self {
+            Self::Acne => "acne (own surface's depth)",
+            Self::PeterPanning => "peter-panning (lit by the bias)",
+            Self::SeamBand => "seam: in a blend band",
+            Self::SeamBoundary => "seam: at a partition boundary",
+            Self::Aliasing => "aliasing (the rest)",
         }
     }
 
@@ -131,7 +159,8 @@ impl Cause {
         match self {
             Self::Acne => ACNE,
             Self::PeterPanning => PETER_PANNING,
-            Self::Seam => SEAM,
+            Self::SeamBand => SEAM_BAND,
+            Self::SeamBoundary => SEAM_BOUNDARY,
             Self::Aliasing => ALIASING,
         }
     }
@@ -141,8 +170,10 @@ impl Cause {
 pub const ACNE: [u8; 3] = [204, 121, 167];
 /// A pixel whose first cause is peter-panning: Okabe and Ito's orange.
 pub const PETER_PANNING: [u8; 3] = [230, 159, 0];
-/// A pixel whose first cause is a seam: Okabe and Ito's sky blue.
-pub const SEAM: [u8; 3] = [86, 180, 233];
+/// A pixel whose first cause is a blend band's seam: Okabe and Ito's sky blue.
+pub const SEAM_BAND: [u8; 3] = [86, 180, 233];
+/// A pixel whose first cause is a partition boundary's seam: Okabe and Ito's blue.
+pub const SEAM_BOUNDARY: [u8; 3] = [0, 114, 178];
 /// A pixel whose first cause is aliasing: Okabe and Ito's bluish green.
 pub const ALIASING: [u8; 3] = [0, 158, 115];
 
@@ -153,8 +184,10 @@ pub struct Causes {
     pub acne: u64,
     /// [`Cause::PeterPanning`].
     pub peter_panning: u64,
-    /// [`Cause::Seam`].
-    pub seam: u64,
+    /// [`Cause::SeamBand`].
+    pub seam_band: u64,
+    /// [`Cause::SeamBoundary`].
+    pub seam_boundary: u64,
     /// [`Cause::Aliasing`].
     pub aliasing: u64,
 }
@@ -166,33 +199,56 @@ impl Causes {
         match cause {
             Cause::Acne => self.acne,
             Cause::PeterPanning => self.peter_panning,
-            Cause::Seam => self.seam,
+            Cause::SeamBand => self.seam_band,
+            Cause::SeamBoundary => self.seam_boundary,
             Cause::Aliasing => self.aliasing,
         }
+    }
+
+    fn of_mut(&mut self, cause: Cause) -> &mut u64 {
+        match cause {
+            Cause::Acne => &mut self.acne,
+            Cause::PeterPanning => &mut self.peter_panning,
+            Cause::SeamBand => &mut self.seam_band,
+            Cause::SeamBoundary => &mut self.seam_boundary,
+            Cause::Aliasing => &mut self.aliasing,
+        }
+    }
+
+    /// The seams of both kinds: the key `seam` of `results.json` and `results.csv`.
+    #[must_use]
+    pub fn seam(&self) -> u64 {
+        self.seam_band + self.seam_boundary
     }
 
     /// Every cause's pairs: the misclassified pairs.
     #[must_use]
     pub fn total(&self) -> u64 {
-        self.acne + self.peter_panning + self.seam + self.aliasing
+        Cause::ALL.iter().map(|&cause| self.of(cause)).sum()
     }
 
-    fn count(&mut self, cause: Cause) {
-        match cause {
-            Cause::Acne => self.acne += 1,
-            Cause::PeterPanning => self.peter_panning += 1,
-            Cause::Seam => self.seam += 1,
-            Cause::Aliasing => self.aliasing += 1,
+    /// Counts one more pair of `cause`.
+    pub fn count(&mut self, cause: Cause) {
+        *self.of_mut(cause) += 1;
+    }
+}
+
+/// `N acne, N peter-panning, N seam-band, N seam-boundary, N aliasing`.
+impl fmt::Display for Causes {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        for (k, cause) in Cause::ALL.into_iter().enumerate() {
+            let separator = if k == 0 { "" } else { ", " };
+            write!(f, "{separator}{} {}", self.of(cause), cause.label())?;
         }
+        Ok(())
     }
 }
 
 impl AddAssign for Causes {
     fn add_assign(&mut self, other: Self) {
-        self.acne += other.acne;
-        self.peter_panning += other.peter_panning;
-        self.seam += other.seam;
-        self.aliasing += other.aliasing;
+        for cause in Cause::ALL {
+            *self.of_mut(cause) += other.of(cause);
+        }
     }
 }
 
@@ -316,8 +372,8 @@ pub fn attribute(
                     }
                 }
             });
-        for cause in causes.iter().flatten() {
-            counts.count(*cause);
+        for &cause in causes.iter().flatten() {
+            counts.count(cause);
         }
         per_pixel.push(causes);
     }
@@ -363,17 +419,17 @@ fn cause_of(
             )
             .map(|s| s.index)
         };
+        if serving.is_some_and(|s| s.blend.is_some()) {
+            return Cause::SeamBand;
+        }
         let own = serving.map(|s| s.index);
-        let in_band = serving.is_some_and(|s| s.blend.is_some());
-        if in_band
-            || own.is_some_and(|own| {
-                neighbours(eye, pixel)
-                    .into_iter()
-                    .flatten()
-                    .any(|n| index(n).is_some_and(|other| other != own))
-            })
-        {
-            return Cause::Seam;
+        if own.is_some_and(|own| {
+            neighbours(eye, pixel)
+                .into_iter()
+                .flatten()
+                .any(|n| index(n).is_some_and(|other| other != own))
+        }) {
+            return Cause::SeamBoundary;
         }
     }
     Cause::Aliasing

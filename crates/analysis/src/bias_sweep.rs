@@ -10,7 +10,7 @@ use std::fmt::Write as _;
 use shadowlab_scene::Scene;
 use shadowlab_shadow::{Bias, Technique};
 
-use crate::attribution::Causes;
+use crate::attribution::{Cause, Causes};
 use crate::classify::Misclassification;
 use crate::error::AnalysisError;
 use crate::report::{csv_field, filter_label, technique_label};
@@ -126,6 +126,11 @@ pub fn on_front(points: &[BiasPoint]) -> Vec<bool> {
         .collect()
 }
 
+/// A combination's pairs per cause, in precedence order.
+fn cause_counts(causes: &Causes) -> [String; Cause::ALL.len()] {
+    Cause::ALL.map(|cause| causes.of(cause).to_string())
+}
+
 /// The sweep written out: `bias-sweep.csv` (every point, with `pareto` true on the front) and
 /// `bias-sweep.md` (per combination: a row per bias, the front marked, the best bias named).
 #[must_use]
@@ -133,10 +138,10 @@ pub fn write(scene: &str, points: &[BiasPoint]) -> Vec<(String, Vec<u8>)> {
     let front = on_front(points);
     let scene_field = csv_field(scene);
     let mut csv = String::from(
-        "scene,technique,resolution,maps,filter,bias,defined,misclassified,acne,peter_panning,aliasing,seam,pareto\n",
+        "scene,technique,resolution,maps,filter,bias,defined,misclassified,acne,peter_panning,seam_band,seam_boundary,aliasing,seam,pareto\n",
     );
     let mut md = format!(
-        "# Bias sweep: `{scene}`\n\nEach bias's misclassified pixels and their causes (acne: falsely shadowed by the receiver's own surface; peter-panning: falsely lit where the unbiased lookup shadows; seam; aliasing: the rest). ★ marks the Pareto front of acne against peter-panning; **bold**, the bias with the fewest misclassified pixels.\n"
+        "# Bias sweep: `{scene}`\n\nEach bias's misclassified pixels and their causes (acne: falsely shadowed by the receiver's own surface; peter-panning: falsely lit where the unbiased lookup shadows; seams in a blend band and at a partition boundary; aliasing: the rest). ★ marks the Pareto front of acne against peter-panning; **bold**, the bias with the fewest misclassified pixels.\n"
     );
     let mut settings: Vec<&Setting> = Vec::new();
     for p in points {
@@ -157,21 +162,19 @@ pub fn write(scene: &str, points: &[BiasPoint]) -> Vec<(String, Vec<u8>)> {
         match &p.outcome {
             Ok((e, c)) => writeln!(
                 csv,
-                "{head},true,{},{},{},{},{},{on}",
+                "{head},true,{},{},{},{on}",
                 e.total(),
-                c.acne,
-                c.peter_panning,
-                c.aliasing,
-                c.seam
+                cause_counts(c).join(","),
+                c.seam()
             ),
-            Err(_) => writeln!(csv, "{head},false,,,,,,false"),
+            Err(_) => writeln!(csv, "{head},false,,,,,,,,false"),
         }
         .expect("writing to a string");
     }
     for setting in settings {
         writeln!(
             md,
-            "\n## {} at {}², {} map(s), {}\n\n| bias | misclassified | acne | peter-panning | aliasing | seam | front |\n|---|---:|---:|---:|---:|---:|:-:|",
+            "\n## {} at {}², {} map(s), {}\n\n| bias | misclassified | acne | peter-panning | seam in a band | seam at a boundary | aliasing | front |\n|---|---:|---:|---:|---:|---:|---:|:-:|",
             technique_label(setting.technique),
             setting.resolution,
             setting.partitions,
@@ -198,16 +201,13 @@ pub fn write(scene: &str, points: &[BiasPoint]) -> Vec<(String, Vec<u8>)> {
                     };
                     writeln!(
                         md,
-                        "| {bias} | {} | {} | {} | {} | {} | {} |",
+                        "| {bias} | {} | {} | {} |",
                         e.total(),
-                        c.acne,
-                        c.peter_panning,
-                        c.aliasing,
-                        c.seam,
+                        cause_counts(c).join(" | "),
                         if on { "★" } else { "" }
                     )
                 }
-                Err(reason) => writeln!(md, "| {bias} | not defined: {reason} | | | | | |"),
+                Err(reason) => writeln!(md, "| {bias} | not defined: {reason} | | | | | | |"),
             }
             .expect("writing to a string");
         }

@@ -21,7 +21,7 @@
 
 use shadowlab_plot::{Color, ColourBar, Scale, Swatch};
 
-use crate::attribution::{ACNE, ALIASING, PETER_PANNING, SEAM};
+use crate::attribution::{Cause, Causes};
 use crate::classify::{BACKGROUND, CORRECT_LIT, CORRECT_SHADOW, FALSELY_LIT, FALSELY_SHADOWED};
 use crate::error::AnalysisError;
 
@@ -263,14 +263,8 @@ pub fn difference_legend(counts: &ClassCounts) -> Vec<Swatch> {
 /// colours.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct CauseCounts {
-    /// [`ACNE`]: acne is the first cause of some light's error.
-    pub acne: u64,
-    /// [`PETER_PANNING`]: peter-panning is.
-    pub peter_panning: u64,
-    /// [`SEAM`]: a seam is.
-    pub seam: u64,
-    /// [`ALIASING`]: aliasing is.
-    pub aliasing: u64,
+    /// Per cause, the pixels it colours: those where it is the first cause of some light's error.
+    pub first: Causes,
     /// [`CORRECT_LIT`]: correct, lit by at least one light.
     pub correct_lit: u64,
     /// [`CORRECT_SHADOW`]: correct, lit by none.
@@ -284,12 +278,12 @@ impl CauseCounts {
     #[must_use]
     pub fn of(causes: &[[u8; 3]]) -> Self {
         let mut counts = Self::default();
-        for pixel in causes {
-            match *pixel {
-                ACNE => counts.acne += 1,
-                PETER_PANNING => counts.peter_panning += 1,
-                SEAM => counts.seam += 1,
-                ALIASING => counts.aliasing += 1,
+        for &pixel in causes {
+            if let Some(cause) = Cause::ALL.into_iter().find(|c| c.colour() == pixel) {
+                counts.first.count(cause);
+                continue;
+            }
+            match pixel {
                 CORRECT_LIT => counts.correct_lit += 1,
                 CORRECT_SHADOW => counts.correct_shadow += 1,
                 BACKGROUND => counts.background += 1,
@@ -299,39 +293,35 @@ impl CauseCounts {
         counts
     }
 
-    /// The classes in the legend's order: colour, what it means, how many pixels, and the class's
-    /// name in `report.html` (`count-NAME`).
+    /// The classes in the legend's order — the causes in precedence order, then correct lit,
+    /// correct in shadow and nothing visible: colour, what it means, how many pixels, and the
+    /// class's name in `report.html` (`count-NAME`).
     #[must_use]
-    pub fn classes(&self) -> [([u8; 3], &'static str, u64, &'static str); 7] {
-        [
-            (ACNE, "acne (own surface's depth)", self.acne, "acne"),
-            (
-                PETER_PANNING,
-                "peter-panning (lit by the bias)",
-                self.peter_panning,
-                "peter-panning",
-            ),
-            (SEAM, "seam between partitions", self.seam, "seam"),
-            (ALIASING, "aliasing (the rest)", self.aliasing, "aliasing"),
-            (
-                CORRECT_LIT,
-                "correct, lit",
-                self.correct_lit,
-                "causes-correct-lit",
-            ),
-            (
-                CORRECT_SHADOW,
-                "correct, in shadow",
-                self.correct_shadow,
-                "causes-correct-shadow",
-            ),
-            (
-                BACKGROUND,
-                "nothing visible",
-                self.background,
-                "causes-background",
-            ),
-        ]
+    pub fn classes(&self) -> Vec<([u8; 3], &'static str, u64, &'static str)> {
+        Cause::ALL
+            .into_iter()
+            .map(|c| (c.colour(), c.meaning(), self.first.of(c), c.label()))
+            .chain([
+                (
+                    CORRECT_LIT,
+                    "correct, lit",
+                    self.correct_lit,
+                    "causes-correct-lit",
+                ),
+                (
+                    CORRECT_SHADOW,
+                    "correct, in shadow",
+                    self.correct_shadow,
+                    "causes-correct-shadow",
+                ),
+                (
+                    BACKGROUND,
+                    "nothing visible",
+                    self.background,
+                    "causes-background",
+                ),
+            ])
+            .collect()
     }
 }
 

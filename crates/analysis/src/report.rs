@@ -172,8 +172,9 @@ fn document(study: &Study) -> Vec<Block> {
     intro.push(vec![text(
         "Each misclassified pixel is given one cause, the first that holds: acne (falsely \
          shadowed by its own surface's depth in the texel under it), peter-panning (falsely lit, \
-         and shadowed by the same lookup without bias), seam (next to a pixel another partition \
-         serves, or in a blend band) and aliasing (the rest).",
+         and shadowed by the same lookup without bias), seam in a blend band (served by two \
+         partitions' maps blended), seam at a boundary (next to a pixel another partition serves) \
+         and aliasing (the rest).",
     )]);
     doc.push(Block::Paragraph(intro));
     let techniques = distinct(study.measurements.iter().map(|m| m.setting.technique));
@@ -254,13 +255,12 @@ fn document(study: &Study) -> Vec<Block> {
         });
         table(
             &mut doc,
-            "Misclassified pixels by cause: acne / peter-panning / seam / aliasing",
+            "Misclassified pixels by cause: acne / peter-panning / seam in a band / seam at a \
+             boundary / aliasing",
             &|o| {
-                let c = &o.causes;
-                format!(
-                    "{} / {} / {} / {}",
-                    c.acne, c.peter_panning, c.seam, c.aliasing
-                )
+                Cause::ALL
+                    .map(|cause| o.causes.of(cause).to_string())
+                    .join(" / ")
             },
         );
         table(
@@ -486,11 +486,13 @@ fn csv(study: &Study) -> Result<String, AnalysisError> {
     // Numbers in Rust's shortest round-trip form (`{:?}`), as the plot crate's tables write them.
     let mut out = String::from(
         "scene,technique,resolution,maps,filter,defined,visible,misclassified,falsely_lit,falsely_shadowed,\
-         acne,peter_panning,seam,aliasing,\
+         acne,peter_panning,seam_band,seam_boundary,aliasing,seam,\
          footprint_max,footprint_p99,footprint_mean,perspective_max,perspective_p99,perspective_mean,\
          projection_max,projection_p99,projection_mean,planning_ms,shadow_pass_ms,lookup_ms,time_ms,\
          time_spread_ms,attribution_ms\n",
     );
+    // The columns after `visible`, empty where the technique is not defined.
+    let measured_columns = out.split(',').count() - 7;
     for m in &study.measurements {
         let s = &m.setting;
         let prefix = format!(
@@ -511,6 +513,7 @@ fn csv(study: &Study) -> Result<String, AnalysisError> {
                     o.errors.falsely_shadowed
                 ));
                 fields.extend(Cause::ALL.map(|cause| o.causes.of(cause).to_string()));
+                fields.push(o.causes.seam().to_string());
                 for part in &o.footprint {
                     fields.extend(stats_columns(part).iter().map(|v| format!("{v:?}")));
                 }
@@ -520,7 +523,13 @@ fn csv(study: &Study) -> Result<String, AnalysisError> {
                 fields.push(format!("{:?}", ms(o.attribution)));
                 writeln!(out, "{}", fields.join(",")).unwrap();
             }
-            Err(_) => writeln!(out, "{prefix},false,{}{}", study.visible, ",".repeat(22)).unwrap(),
+            Err(_) => writeln!(
+                out,
+                "{prefix},false,{}{}",
+                study.visible,
+                ",".repeat(measured_columns)
+            )
+            .unwrap(),
         }
     }
     Ok(out)
@@ -555,7 +564,9 @@ fn json(study: &Study) -> Value {
                         "falsely_shadowed": o.errors.falsely_shadowed,
                         "acne": o.causes.acne,
                         "peter_panning": o.causes.peter_panning,
-                        "seam": o.causes.seam,
+                        "seam": o.causes.seam(),
+                        "seam_band": o.causes.seam_band,
+                        "seam_boundary": o.causes.seam_boundary,
                         "aliasing": o.causes.aliasing,
                         "texels": o.texels,
                         "footprint": {"total": stats(&o.footprint[0]), "perspective": stats(&o.footprint[1]), "projection": stats(&o.footprint[2])},

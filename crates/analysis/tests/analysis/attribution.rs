@@ -1,11 +1,11 @@
 //! Attribution: scenes built so that each cause occurs alone (acne, peter-panning, aliasing, a
-//! seam — the last both in a blend band and at a hard boundary), the four counts summing to the
+//! seam in a blend band, a seam at a hard boundary), the five counts summing to the
 //! misclassified pairs on every built-in scene, and the same causes on one and two threads.
 
 use std::f64::consts::FRAC_1_SQRT_2;
 
 use glam::{DAffine3, DVec3};
-use shadowlab_analysis::attribution::{Attribution, Causes, attribute};
+use shadowlab_analysis::attribution::{Attribution, Cause, Causes, attribute};
 use shadowlab_analysis::classify::{Misclassification, misclassification};
 use shadowlab_analysis::study::{self, StudyOptions};
 use shadowlab_analysis::truth::{Truth, exact_truth, scene_bvh};
@@ -310,7 +310,7 @@ fn shadow_depths(judged: &Judged) -> (f64, f64) {
 /// Claim: two partitions blended over a band of eye depths that holds the strip's whole shadow —
 /// the first an aligned map that errs nowhere, the second the misaligned one, which serves alone
 /// only beyond the shadow, where it errs nowhere either — err only in the band, where the second
-/// map weighs more; every misclassified pixel is a seam.
+/// map weighs more; every misclassified pixel is a blend band's seam.
 #[test]
 fn a_misaligned_map_blended_in_errs_only_at_the_seam() {
     let judged = strip_scene();
@@ -322,7 +322,10 @@ fn a_misaligned_map_blended_in_errs_only_at_the_seam() {
     let shadows = judged.shadows(&partitions, 32, &small_bias(), true);
     let (errors, attribution) = judged.attribute(&shadows, Filter::Nearest);
     assert!(errors.total() > 20, "{errors:?}");
-    assert_eq!(attribution.counts, only(errors.total(), |c| &mut c.seam));
+    assert_eq!(
+        attribution.counts,
+        only(errors.total(), |c| &mut c.seam_band)
+    );
 
     // Without the blend the first map serves the shadow: nothing is misclassified.
     let shadows = judged.shadows(&partitions, 32, &small_bias(), false);
@@ -381,7 +384,7 @@ fn thinnest_band(
 
 /// Claim: a misaligned map serving a band of eye depths across the strip's shadow, so thin that
 /// each of its pixels has a neighbour served by the aligned maps on either side: its errors are
-/// seams; widened, the same map's errors inside the band are aliasing.
+/// boundary seams; widened, the same map's errors inside the band are aliasing.
 #[test]
 fn a_misaligned_map_in_a_thin_band_errs_only_at_the_seam() {
     let judged = strip_scene();
@@ -399,12 +402,15 @@ fn a_misaligned_map_in_a_thin_band_errs_only_at_the_seam() {
     let shadows = judged.shadows(&partitions(band), 32, &small_bias(), false);
     let (errors, attribution) = judged.attribute(&shadows, Filter::Nearest);
     assert!(errors.total() > 0, "{errors:?}");
-    assert_eq!(attribution.counts, only(errors.total(), |c| &mut c.seam));
+    assert_eq!(
+        attribution.counts,
+        only(errors.total(), |c| &mut c.seam_boundary)
+    );
 
     let wide = judged.shadows(&partitions(0.4 * (far - near)), 32, &small_bias(), false);
     let (errors, attribution) = judged.attribute(&wide, Filter::Nearest);
     assert!(
-        attribution.counts.aliasing > 0 && attribution.counts.seam > 0,
+        attribution.counts.aliasing > 0 && attribution.counts.seam_boundary > 0,
         "{errors:?}: {:?}",
         attribution.counts
     );
@@ -420,8 +426,8 @@ fn quarter(name: &str) -> Scene {
 }
 
 /// Claim: on every built-in scene, for uniform and LiSPSM with one and three maps, nearest and
-/// PCF, an engine's blended cascades, and PSM and the logarithmic map (one map each), the four
-/// causes sum to the misclassified pixels.
+/// PCF, an engine's blended cascades, and PSM and the logarithmic map (one map each), the five
+/// causes sum to the misclassified pixels, and each occurs somewhere.
 #[test]
 fn the_causes_sum_to_the_misclassified_pixels_on_every_built_in_scene() {
     let options =
@@ -471,7 +477,7 @@ fn the_causes_sum_to_the_misclassified_pixels_on_every_built_in_scene() {
     }
     // Every cause occurs somewhere among them.
     assert!(
-        seen.acne > 0 && seen.peter_panning > 0 && seen.seam > 0 && seen.aliasing > 0,
+        Cause::ALL.iter().all(|&cause| seen.of(cause) > 0),
         "{seen:?}"
     );
 }
