@@ -147,7 +147,9 @@ pub(crate) struct AnalyzeArgs {
     pub(crate) scene: SceneArg,
     /// The techniques, comma-separated: each TECHNIQUE or TECHNIQUE:PARAMETER (lispsm:minimax,
     /// optimal:refit, sdsm:kmeans), or an engine's preset (bevy, filament, godot, babylon, threejs,
-    /// unity, unreal; ENGINE:unsnapped without its texel snapping).
+    /// unity, unreal), with choices of its own after a colon, +-joined: unsnapped, fit=diagonal|
+    /// diagonal-ceil|box|sphere|sphere-border, blend=W (0 ≤ W < 1), select=depth|containing
+    /// (godot:unsnapped+blend=0.1).
     #[arg(long, value_delimiter = ',', default_value = ALL_TECHNIQUES, allow_hyphen_values = true, value_parser = technique_spec)]
     pub(crate) techniques: Vec<Technique>,
     /// Shadow-map sides, comma-separated (Chong and Gortler's: 750 to 2000).
@@ -309,7 +311,8 @@ pub(crate) struct CompareArgs {
     #[command(flatten)]
     pub(crate) scene: SceneArg,
     /// The techniques, comma-separated: each `TECHNIQUE` or `TECHNIQUE:PARAMETER`, or an engine's
-    /// preset (`bevy`, `filament`, `godot`, `babylon`, `threejs`, `unity`, `unreal`).
+    /// preset (`bevy`, `filament`, `godot`, `babylon`, `threejs`, `unity`, `unreal`) with its
+    /// choices (as for analyze --techniques).
     #[arg(
         long,
         value_delimiter = ',',
@@ -367,9 +370,10 @@ fn parse_crop(text: &str) -> Result<[u32; 4], String> {
 pub(crate) struct ShadowArgs {
     #[command(flatten)]
     pub(crate) scene: SceneArg,
-    /// The technique: uniform, uniform_limited, psm, lispsm, logarithmic, optimal, or
-    /// TECHNIQUE:PARAMETER. Given here, it replaces the scene's technique and parameter. Default:
-    /// lispsm.
+    /// The technique: uniform, uniform_limited, psm, lispsm, logarithmic, optimal, sdsm, or
+    /// TECHNIQUE:PARAMETER; or an engine's preset (bevy, filament, godot, babylon, threejs, unity,
+    /// unreal) with its choices (bevy:fit=sphere+blend=0.1, as for analyze --techniques). Given
+    /// here, it replaces the scene's technique and parameter. Default: lispsm.
     #[arg(long, allow_hyphen_values = true, value_parser = technique_spec)]
     pub(crate) technique: Option<Technique>,
     /// LiSPSM's parameter: lispsm (the paper's n = (z_n + √(z_n·z_f))/sin γ, default), lispsm_dz,

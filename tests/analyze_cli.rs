@@ -381,6 +381,80 @@ fn analyze_measures_engine_presets_and_sdsm_with_causes() {
     }
 }
 
+/// Claim: a preset's choices are techniques of their own: `analyze` measures each, labelled as
+/// written back (`babylon/fit=sphere+blend=0.2`), with the engine's cascade count; a choice that
+/// does not apply is refused with exit 2, naming preset and choice, and nothing is written.
+#[test]
+fn analyze_measures_preset_choices_and_refuses_bad_ones() {
+    let scenes = tempfile::tempdir().unwrap();
+    let scene = scene_file(scenes.path());
+    let out = tempfile::tempdir().unwrap();
+    let output = shadowlab(
+        &[
+            "analyze",
+            &scene,
+            "--techniques",
+            "babylon,babylon:blend=0.2+fit=sphere,godot:select=containing+blend=0.1,filament:fit=sphere",
+            "--resolutions",
+            "256",
+            "--timing-runs",
+            "1",
+            "--out",
+            out.path().to_str().unwrap(),
+        ],
+        None,
+    );
+    assert!(output.status.success(), "{}", stderr(&output));
+    let json: serde_json::Value =
+        serde_json::from_str(&fs::read_to_string(out.path().join("results.json")).unwrap())
+            .unwrap();
+    let measured: Vec<(String, u64, u64)> = json["measurements"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|m| {
+            (
+                m["setting"]["technique"].as_str().unwrap().to_string(),
+                m["setting"]["maps"].as_u64().unwrap(),
+                m["misclassified"].as_u64().unwrap(),
+            )
+        })
+        .collect();
+    let labels: Vec<(&str, u64)> = measured.iter().map(|(t, m, _)| (t.as_str(), *m)).collect();
+    assert_eq!(
+        labels,
+        [
+            ("babylon", 4),
+            ("babylon/fit=sphere+blend=0.2", 4),
+            ("godot/blend=0.1+select=containing", 4),
+            ("filament/fit=sphere", 1)
+        ]
+    );
+    // Another fit and band are other maps: Babylon's errors change.
+    assert_ne!(measured[0].2, measured[1].2, "{measured:?}");
+
+    let refused = tempfile::tempdir().unwrap();
+    let target = refused.path().join("out");
+    let output = shadowlab(
+        &[
+            "analyze",
+            &scene,
+            "--techniques",
+            "unity:blend=0.1",
+            "--out",
+            target.to_str().unwrap(),
+        ],
+        None,
+    );
+    assert_eq!(output.status.code(), Some(2), "{}", stderr(&output));
+    assert!(
+        stderr(&output).contains("unity renders one cascade"),
+        "{}",
+        stderr(&output)
+    );
+    assert!(!target.exists());
+}
+
 /// Claim: `analyze --biases` sweeps the bias: a row per bias and combination, the Pareto front of
 /// acne against peter-panning marked, the best bias named; no bias, the ladder; and a preset,
 /// which reads its maps with its engine's bias, is refused with exit 2.

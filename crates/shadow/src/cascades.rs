@@ -19,6 +19,7 @@
 use glam::{DMat4, DVec3, DVec4};
 use shadowlab_hull::{Frustum, Perspective, ViewPose};
 
+use crate::cascade_fit::{CascadeFit, Snap};
 use crate::error::ShadowError;
 use crate::input::{LightSource, PlanInput};
 use crate::partition::CullingSphere;
@@ -35,57 +36,6 @@ pub struct CascadeSlice {
     pub select: (f64, f64),
     /// The eye depths of the view frustum's slice its map is fitted to.
     pub slice: (f64, f64),
-}
-
-/// How a cascade's window is fitted to its slice (the slice's eight corners in the light basis).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum CascadeFit {
-    /// A square of side `d` = the larger of the slice's body diagonal and far-face diagonal (Bevy:
-    /// `max(|c₀ − c₆|, |c₄ − c₆|)` in its corner order), which no rotation of the camera changes — centred on the box of the
-    /// corners, `d` rounded up to a whole world unit when `ceil` (Bevy `calculate_cascade`; three.js
-    /// CSM `updateShadowBounds` without rounding).
-    Diagonal {
-        /// Round the side up to a whole unit (Bevy).
-        ceil: bool,
-    },
-    /// The axis-aligned box of the corners in the light basis (Babylon's
-    /// `_computeCascadeFrustum` with `stabilizeCascades` off); not square, and it turns with the
-    /// camera.
-    CornerBox,
-    /// The bounding sphere of the corners about their centroid (radius the largest distance), its
-    /// radius multiplied by `border` (Godot `_light_instance_setup_directional_shadow`:
-    /// `size/(size − 2)`, a texel each side; Unity URP's culling sphere, fitted by closed native
-    /// code — unverified, taken as this sphere with no border), the window the square around it.
-    Sphere {
-        /// Godot's one-texel border on each side.
-        texel_border: bool,
-    },
-}
-
-/// How a cascade's window is moved onto the texel grid, in the light basis (whose origin is the
-/// world origin, so a grid fixed in the world).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Snap {
-    /// None.
-    Off,
-    /// The window's centre floored to a multiple of `texels` texels (Bevy `calculate_cascade`,
-    /// three.js CSM `update`: `floor(c/t)·t`).
-    CentreFloor {
-        /// The grid, in texels.
-        texels: u32,
-    },
-    /// The window's centre rounded to a multiple of `texels` texels (Babylon `_computeMatrices`:
-    /// the world origin's NDC rounded to whole texels; Unreal, unverified).
-    CentreRound {
-        /// The grid, in texels.
-        texels: u32,
-    },
-    /// Each edge of the window rounded to a multiple of `texels` texels (Godot
-    /// `Math::snapped(x, 4r/size)`: 2 texels).
-    EdgesRound {
-        /// The grid, in texels.
-        texels: u32,
-    },
 }
 
 /// One cascade's window in the light basis: `x ∈ [min.x, max.x]`, `y ∈ [min.y, max.y]`.

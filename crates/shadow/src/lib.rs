@@ -27,6 +27,7 @@
 //! Matrices act on column vectors and produce GL clip space (NDC depth in `[−1, 1]`).
 
 pub mod bias;
+mod cascade_fit;
 pub mod cascades;
 mod error;
 pub mod faces;
@@ -47,6 +48,7 @@ pub mod psm;
 mod render;
 pub mod sdsm;
 mod selection;
+mod serving;
 mod setup;
 mod snap;
 mod technique;
@@ -54,6 +56,7 @@ pub mod view;
 mod warp;
 
 pub use bias::{Bias, DepthComparison, LightTexel, NormalOffset};
+pub use cascade_fit::{CascadeFit, Snap};
 pub use error::ShadowError;
 pub use faces::FaceRegion;
 pub use input::{Eye, FocusPolicy, LightSource, PlanInput};
@@ -67,10 +70,11 @@ pub use render::{
     lit_at, plan_frame, plan_light, render_frame, render_shadows, scene_box, scene_eye,
     scene_input, selection_of, shadows_of,
 };
-pub use selection::{Beyond, Fade, FadeCurve, Selection, SelectionRule, Served, served};
+pub use selection::{Beyond, Fade, FadeCurve, Selection, SelectionRule};
+pub use serving::{Served, served};
 pub use setup::{LightSetup, PsmReport, ShadowMapping, WarpReport};
 pub use snap::snap_to_texels;
 pub use technique::{
-    Engine, LogarithmicChoice, NearDistance, ProductionVariant, SdsmVariant, Stabilisation,
-    StepDirection, Technique, WarpChoice,
+    BlendWidth, Engine, LogarithmicChoice, NearDistance, PresetChoices, ProductionVariant,
+    SdsmVariant, Stabilisation, StepDirection, Technique, WarpChoice,
 };

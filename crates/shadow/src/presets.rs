@@ -12,19 +12,39 @@
 //!   into one perspective map; their fits of it are not reproduced);
 //! - blending engines fit the next cascade from the start of the blend band, so both maps cover it
 //!   (Bevy does so itself; for Babylon and Unreal, named **band coverage**).
+//!
+//! # Choices ([`PresetChoices`], `ENGINE:CHOICE+…`)
+//! A preset's fit, blend width and selection rule can be chosen otherwise, each a knob beside
+//! `unsnapped`; everything else stays the engine's:
+//! - `fit=F` ([`CascadeFit`]): every cascade fitted so, snapped as the engine snaps. Filament's
+//!   default is no cascade fit but LiSPSM per cascade; with `fit=F` it gets that fit and no
+//!   snapping (its 2-texel snap belongs to its `stable` mode, not reproduced).
+//! - `blend=W`, `W ∈ [0, 1)`, in the engine's own measure: Bevy's `overlap_proportion` (cascade
+//!   `i` starts at `(1 − W)·b_{i−1}`), Babylon's `cascadeBlendPercentage` and Unreal's
+//!   `CascadeTransitionFraction` (the last `W` of each cascade's length). Godot and three.js do not
+//!   blend by default; with `blend=W` they get Babylon's band, linear over the last `W` of each
+//!   cascade — shadowlab's **linear band** (Godot's own `blend_splits` smoothstep and three.js's
+//!   `fade` are not reproduced). `blend=0` turns blending off. Filament and Unity have one cascade:
+//!   nothing to blend, and `blend` is refused.
+//! - `select=depth|containing` ([`SelectionRule`]): the cascade picked by eye depth or by the
+//!   first map holding the point (culling sphere, else window); a blend band then applies by eye
+//!   depth after either rule.
 
 use shadowlab_params::DepthRange;
 use shadowlab_params::splits::SplitScheme;
 
 use crate::bias::{Bias, DepthComparison, NormalOffset};
-use crate::cascades::{self, CascadeFit, CascadeSlice, Snap};
+use crate::cascade_fit::{CascadeFit, Snap};
+use crate::cascades::{self, CascadeSlice};
 use crate::error::ShadowError;
 use crate::input::{LightSource, PlanInput};
 use crate::partition::Partition;
 use crate::plan::{plan, plan_partitions_at};
 use crate::selection::{Beyond, Fade, FadeCurve, Selection, SelectionRule};
 use crate::setup::ShadowMapping;
-use crate::technique::{Engine, ProductionVariant, Stabilisation, Technique, WarpChoice};
+use crate::technique::{
+    BlendWidth, Engine, PresetChoices, ProductionVariant, Stabilisation, Technique, WarpChoice,
+};
 
 /// The map an engine allocates by default, for the docs' memory table.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -65,9 +85,34 @@ impl Engine {
         }
     }
 
-    /// How its cascades are chosen, blended and faded for a directional light.
+    /// Whether `choices` apply to it: a blend width needs more than one cascade.
+    ///
+    /// # Errors
+    /// The choice that does not apply, and why.
+    pub fn check(self, choices: PresetChoices) -> Result<(), String> {
+        if choices.blend.is_some() && self.cascades() == 1 {
+            return Err(format!(
+                "{self} renders one cascade: there is nothing to blend (blend=W applies to \
+                 bevy, godot, babylon, threejs and unreal)"
+            ));
+        }
+        Ok(())
+    }
+
+    /// How its cascades are chosen, blended and faded for a directional light, with `choices`'
+    /// selection rule and blend width where given.
     #[must_use]
-    pub fn selection(self) -> Selection {
+    pub fn selection(self, choices: PresetChoices) -> Selection {
+        let engine = self.engine_selection();
+        Selection {
+            rule: choices.select.unwrap_or(engine.rule),
+            blend: choices.blend.map_or(engine.blend, |w| w.get() > 0.0),
+            ..engine
+        }
+    }
+
+    /// How its cascades are chosen, blended and faded as the engine ships it.
+    fn engine_selection(self) -> Selection {
         let depth = |blend, beyond, fade| Selection {
             rule: SelectionRule::Depth,
             blend,
@@ -113,35 +158,33 @@ impl Engine {
         }
     }
 
-    /// The cascades of a camera whose view runs from eye depth `near` to `far`.
+    /// The cascades of a camera whose view runs from eye depth `near` to `far`, with the blend
+    /// width `blend` where given (module docs).
     ///
     /// # Errors
     /// A parameter error for a depth range the split rules reject.
-    pub fn slices(self, near: f64, far: f64) -> Result<Vec<CascadeSlice>, ShadowError> {
-        let same = |bounds: &[f64]| -> Vec<CascadeSlice> {
-            bounds
-                .windows(2)
-                .map(|pair| CascadeSlice {
-                    select: (pair[0], pair[1]),
-                    slice: (pair[0], pair[1]),
-                })
-                .collect()
-        };
-        Ok(match self {
-            Self::Bevy => bevy_slices(),
+    pub fn slices(
+        self,
+        near: f64,
+        far: f64,
+        blend: Option<BlendWidth>,
+    ) -> Result<Vec<CascadeSlice>, ShadowError> {
+        let width = |engine: f64| blend.map_or(engine, BlendWidth::get);
+        let slices = match self {
+            Self::Bevy => return Ok(bevy_slices(width(BEVY_OVERLAP))),
             // One cascade over the camera's [zn, zf] (`shadowCascades` = 1, `shadowFar` 0).
-            Self::Filament => same(&[near, far]),
+            Self::Filament => unbanded(&[near, far]),
             Self::Godot => {
                 let max = GODOT_MAX_DISTANCE.min(far);
                 let mut bounds = vec![near];
                 bounds.extend(GODOT_SPLITS.iter().map(|s| near + s * (max - near)));
                 bounds.push(max);
-                same(&bounds)
+                unbanded(&bounds)
             }
-            Self::Babylon => banded(&babylon_bounds(near, far)?, BABYLON_BLEND),
+            Self::Babylon => band(unbanded(&babylon_bounds(near, far)?), width(BABYLON_BLEND)),
             Self::ThreeJs => threejs_slices(near, far)?,
             // One cascade, `m_ShadowCascadeCount` = 1, to the shadow distance.
-            Self::Unity => same(&[near, UNITY_SHADOW_DISTANCE.max(near)]),
+            Self::Unity => unbanded(&[near, UNITY_SHADOW_DISTANCE.max(near)]),
             Self::Unreal => {
                 let distance = UNREAL_SHADOW_DISTANCE.max(near);
                 let count = f64::from(UNREAL_CASCADES);
@@ -152,14 +195,34 @@ impl Engine {
                             / total
                     })
                     .collect();
-                banded(&bounds, UNREAL_TRANSITION)
+                band(unbanded(&bounds), width(UNREAL_TRANSITION))
             }
+        };
+        // The engines that do not blend: shadowlab's linear band, if a width is chosen.
+        Ok(match (self, blend) {
+            (Self::Godot | Self::ThreeJs, Some(width)) => band(slices, width.get()),
+            _ => slices,
         })
     }
 
-    /// Its cascade fit and snapping (`stabilisation` off: no snapping).
+    /// Its cascade fit and snapping with `choices`' fit where given (module docs), and no
+    /// snapping if they say `unsnapped`; `None` for Filament's LiSPSM cascades.
     #[must_use]
-    pub fn fit(self, stabilisation: Stabilisation) -> Option<(CascadeFit, Snap)> {
+    pub fn fit(self, choices: PresetChoices) -> Option<(CascadeFit, Snap)> {
+        let (fit, snap) = match (self.engine_fit(), choices.fit) {
+            (Some((_, snap)), Some(fit)) => (fit, snap),
+            (None, Some(fit)) => (fit, Snap::Off),
+            (Some(engine), None) => engine,
+            (None, None) => return None,
+        };
+        Some(match choices.stabilisation {
+            Stabilisation::Engine => (fit, snap),
+            Stabilisation::Unsnapped => (fit, Snap::Off),
+        })
+    }
+
+    /// Its cascade fit and snapping as the engine ships them.
+    fn engine_fit(self) -> Option<(CascadeFit, Snap)> {
         let (fit, snap) = match self {
             // `calculate_cascade`: ceil'd diagonal square, centre floored to one texel.
             Self::Bevy => (
@@ -195,10 +258,7 @@ impl Engine {
                 Snap::CentreRound { texels: 1 },
             ),
         };
-        Some(match stabilisation {
-            Stabilisation::Engine => (fit, snap),
-            Stabilisation::Unsnapped => (fit, Snap::Off),
-        })
+        Some((fit, snap))
     }
 
     /// Its default bias for the map of `partition` (one of its cascades, `resolution` texels a
@@ -258,9 +318,10 @@ impl Engine {
         }
     }
 
-    /// Plans `input`'s light as the engine does, labelled `technique`, for maps of `resolution`
-    /// texels: a directional light's cascades ([`crate::cascades`], or for Filament its LiSPSM map
-    /// of each cascade with Filament's parameter), a spot light's one map fitted as `uniform`.
+    /// Plans `input`'s light as the engine does with `choices`, labelled `technique`, for maps of
+    /// `resolution` texels: a directional light's cascades ([`crate::cascades`], or for Filament
+    /// without a chosen fit its LiSPSM map of each cascade with Filament's parameter), a spot
+    /// light's one map fitted as `uniform`.
     ///
     /// # Errors
     /// As [`crate::cascades::plan`] and [`crate::plan`].
@@ -268,7 +329,7 @@ impl Engine {
         self,
         input: &PlanInput,
         technique: Technique,
-        stabilisation: Stabilisation,
+        choices: PresetChoices,
         resolution: u32,
     ) -> Result<Vec<Partition>, ShadowError> {
         let projection = input.eye.projection;
@@ -288,8 +349,8 @@ impl Engine {
                 setup: plan(input, Technique::Uniform)?,
             }]));
         }
-        let slices = self.slices(near, far)?;
-        match self.fit(stabilisation) {
+        let slices = self.slices(near, far, choices.blend)?;
+        match self.fit(choices) {
             Some(fit) => cascades::plan(input, technique, &slices, fit, resolution),
             None => {
                 // Filament: `applyLISPSM` on each cascade's focused light frustum.
@@ -312,7 +373,7 @@ const BEVY_OVERLAP: f64 = 0.2;
 /// Bevy's cascades (`calculate_cascade_bounds`, `build_directional_light_cascades`): far bounds
 /// `b_i = first·(max/first)^(i/(N − 1))`; cascade 0 starts at `minimum_distance`, cascade `i > 0`
 /// at `(1 − overlap)·b_{i−1}`. They do not depend on the camera's near and far.
-fn bevy_slices() -> Vec<CascadeSlice> {
+fn bevy_slices(overlap: f64) -> Vec<CascadeSlice> {
     let far = |i: i32| {
         BEVY_FIRST_FAR
             * (BEVY_MAXIMUM / BEVY_FIRST_FAR).powf(f64::from(i) / f64::from(BEVY_CASCADES - 1))
@@ -322,7 +383,7 @@ fn bevy_slices() -> Vec<CascadeSlice> {
             let near = if i == 0 {
                 BEVY_MINIMUM
             } else {
-                (1.0 - BEVY_OVERLAP) * far(i - 1)
+                (1.0 - overlap) * far(i - 1)
             };
             CascadeSlice {
                 select: (near, far(i)),
@@ -356,26 +417,30 @@ fn babylon_bounds(near: f64, far: f64) -> Result<Vec<f64>, ShadowError> {
     .boundaries(DepthRange::new(near, far)?, BABYLON_CASCADES)?)
 }
 
-/// Cascades from `bounds` with a blend band over the last `fraction` of each cascade's own length:
-/// cascade `i + 1` is selected, and its map fitted, from `b_{i+1} − fraction·(b_{i+1} − b_i)`
-/// (band coverage), so the two overlap across the band.
-fn banded(bounds: &[f64], fraction: f64) -> Vec<CascadeSlice> {
+/// Cascades from `bounds`, each selected for and fitted to its own interval.
+fn unbanded(bounds: &[f64]) -> Vec<CascadeSlice> {
     bounds
         .windows(2)
-        .enumerate()
-        .map(|(i, pair)| {
-            let start = if i == 0 {
-                pair[0]
-            } else {
-                let (b0, b1) = (bounds[i - 1], pair[0]);
-                b1 - fraction * (b1 - b0)
-            };
-            CascadeSlice {
-                select: (start, pair[1]),
-                slice: (start, pair[1]),
-            }
+        .map(|pair| CascadeSlice {
+            select: (pair[0], pair[1]),
+            slice: (pair[0], pair[1]),
         })
         .collect()
+}
+
+/// `slices` with a blend band over the last `fraction` of each cascade's own length: cascade
+/// `i + 1` is selected, and its map fitted, from `b_{i+1} − fraction·(b_{i+1} − b_i)` (band
+/// coverage), so the two overlap across the band; selection and slice depths each so.
+fn band(mut slices: Vec<CascadeSlice>, fraction: f64) -> Vec<CascadeSlice> {
+    let widened = |(start, end): (f64, f64), (previous, _): (f64, f64)| {
+        (start - fraction * (start - previous), end)
+    };
+    for i in (1..slices.len()).rev() {
+        let previous = slices[i - 1];
+        slices[i].select = widened(slices[i].select, previous.select);
+        slices[i].slice = widened(slices[i].slice, previous.slice);
+    }
+    slices
 }
 
 /// three.js CSM: 3 cascades, `mode` 'practical' (λ 0.5, hard-coded), `maxFar` 100000.
@@ -427,17 +492,20 @@ mod tests {
 
     #[test]
     fn bevy_bounds_are_its_defaults() {
-        let far: Vec<f64> = bevy_slices().iter().map(|s| s.select.1).collect();
+        let far: Vec<f64> = bevy_slices(BEVY_OVERLAP)
+            .iter()
+            .map(|s| s.select.1)
+            .collect();
         let expected = [10.0, 24.662_120_743_304_7, 60.822_019_955_734, 150.0];
         for (a, b) in far.iter().zip(expected) {
             assert!((a - b).abs() < 1e-9, "{far:?}");
         }
-        assert_eq!(bevy_slices()[1].select.0, 8.0);
+        assert_eq!(bevy_slices(BEVY_OVERLAP)[1].select.0, 8.0);
     }
 
     #[test]
     fn godot_bounds_with_near_0_05() {
-        let slices = Engine::Godot.slices(0.05, 4000.0).unwrap();
+        let slices = Engine::Godot.slices(0.05, 4000.0, None).unwrap();
         let far: Vec<f64> = slices.iter().map(|s| s.select.1).collect();
         let expected = [10.045, 20.04, 50.025, 100.0];
         for (a, b) in far.iter().zip(expected) {
@@ -447,7 +515,9 @@ mod tests {
 
     #[test]
     fn unreal_bounds_are_a_geometric_series() {
-        let slices = Engine::Unreal.slices(0.0_f64.max(1.0), 1000.0).unwrap();
+        let slices = Engine::Unreal
+            .slices(0.0_f64.max(1.0), 1000.0, None)
+            .unwrap();
         // (3^i − 1)/(3^3 − 1): 2/26, 8/26 of 199 after the near of 1.
         assert!((slices[0].select.1 - (1.0 + 199.0 * 2.0 / 26.0)).abs() < 1e-12);
         assert!((slices[1].select.1 - (1.0 + 199.0 * 8.0 / 26.0)).abs() < 1e-12);

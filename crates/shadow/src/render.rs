@@ -20,7 +20,8 @@ use crate::optimal::{self, OptimalOptions};
 use crate::partition::Partition;
 use crate::plan::{Splits, plan_partitions};
 use crate::sdsm;
-use crate::selection::{Selection, served};
+use crate::selection::Selection;
+use crate::serving::served;
 use crate::setup::ShadowMapping;
 use crate::snap::snap_to_texels;
 use crate::technique::Technique;
@@ -258,8 +259,8 @@ pub fn plan_light(
     let input = scene_input(scene, light, nearest_visible_depth, options.focus)?;
     let partitions = options.partitions.max(1);
     match options.technique {
-        Technique::Engine(engine, stabilisation) => {
-            return engine.plan(&input, options.technique, stabilisation, resolution);
+        Technique::Engine(engine, choices) => {
+            return engine.plan(&input, options.technique, choices, resolution);
         }
         Technique::Sdsm(variant) => {
             let image = eye.ok_or_else(|| ShadowError::NotDefined {
@@ -455,7 +456,9 @@ pub struct LightMaps {
 #[must_use]
 pub fn selection_of(technique: Technique, light: &SceneLight) -> Selection {
     match (technique, light) {
-        (Technique::Engine(engine, _), SceneLight::Directional { .. }) => engine.selection(),
+        (Technique::Engine(engine, choices), SceneLight::Directional { .. }) => {
+            engine.selection(choices)
+        }
         _ => Selection::DEFAULT,
     }
 }

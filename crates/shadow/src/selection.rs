@@ -1,12 +1,7 @@
-//! Which of a light's maps serves a visible point: the one rule every lookup, footprint and
-//! attribution reads ([`served`]), with the cascade selections engines ship — by eye depth
+//! How a light's maps share the view, as data: the cascade selections engines ship — by eye depth
 //! (interval) or by the first map that contains the point, blending across the overlap of two
-//! cascades, and fading the shadow out toward the last cascade's far end.
-
-use glam::DVec3;
-
-use crate::input::Eye;
-use crate::partition::Partition;
+//! cascades, and fading the shadow out toward the last cascade's far end. The rule that applies
+//! them to a point is [`crate::serving`].
 
 /// How a light's partitions (cascades) share the view.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -49,6 +44,31 @@ pub enum SelectionRule {
     /// URP's `ComputeCascadeIndex`: the first sphere with `|p − c|² < r²`), else its map's window
     /// (`x, y ∈ [0, 1)`, depth in `[0, 1]`).
     Containing,
+}
+
+impl SelectionRule {
+    /// Both rules.
+    pub const ALL: [Self; 2] = [Self::Depth, Self::Containing];
+
+    /// Its key in a preset's parameters: `depth` or `containing`.
+    #[must_use]
+    pub fn key(self) -> &'static str {
+        match self {
+            Self::Depth => "depth",
+            Self::Containing => "containing",
+        }
+    }
+
+    /// The rule named `key`.
+    ///
+    /// # Errors
+    /// An unknown key, with the known ones.
+    pub fn parse(key: &str) -> Result<Self, String> {
+        Self::ALL
+            .into_iter()
+            .find(|r| r.key() == key)
+            .ok_or_else(|| format!("unknown selection {key:?}; known: depth, containing"))
+    }
 }
 
 /// What serves a point beyond the last partition.
@@ -100,137 +120,4 @@ impl Fade {
                 .clamp(0.0, 1.0),
         }
     }
-}
-
-/// What serves one visible point.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Served {
-    /// The serving partition.
-    pub index: usize,
-    /// Within a blend band: the next partition and its weight in `(0, 1)`.
-    pub blend: Option<(usize, f64)>,
-    /// The fade toward lit, in `[0, 1]` (0: none).
-    pub fade: f64,
-}
-
-impl Served {
-    /// The lit fraction from the serving map's (`lit(index)`) and, within a blend band, the next
-    /// map's, faded: `s = (1 − w)·s_i + w·s_{i+1}`, then `s + (1 − s)·fade`.
-    pub fn combine(&self, mut lit: impl FnMut(usize) -> f64) -> f64 {
-        let mut s = lit(self.index);
-        if let Some((next, weight)) = self.blend {
-            s = (1.0 - weight) * s + weight * lit(next);
-        }
-        s + (1.0 - s) * self.fade
-    }
-}
-
-/// Which of `partitions` (nearest first, as planned; each reached through `partition`) serves the
-/// visible point `world` seen by `eye`, as `selection` says; `None` if the point lies beyond the
-/// shadowed range ([`Beyond::Lit`]) and is lit.
-#[must_use]
-pub fn served<T>(
-    partitions: &[T],
-    partition: impl Fn(&T) -> &Partition,
-    selection: &Selection,
-    eye: &Eye,
-    world: DVec3,
-) -> Option<Served> {
-    if partitions.is_empty() {
-        return None;
-    }
-    let offset = world - eye.pose.eye();
-    let depth = offset.dot(eye.pose.forward());
-    let (index, blend) = match selection.rule {
-        SelectionRule::Depth => {
-            let group = partitions.iter().position(|p| partition(p).far > depth);
-            let first = match (group, selection.beyond) {
-                (Some(k), _) => k,
-                (None, Beyond::Last) => partitions.len() - 1,
-                (None, Beyond::Lit) => return None,
-            };
-            let index = face_serving(partitions, &partition, first, world);
-            let blend = if selection.blend {
-                blend_with_next(partitions, &partition, index, depth, world)
-            } else {
-                None
-            };
-            (index, blend)
-        }
-        SelectionRule::Containing => {
-            match (
-                partitions.iter().position(|p| partition(p).contains(world)),
-                selection.beyond,
-            ) {
-                (Some(k), _) => (k, None),
-                (None, Beyond::Last) => (partitions.len() - 1, None),
-                (None, Beyond::Lit) => return None,
-            }
-        }
-    };
-    let fade = selection
-        .fade
-        .map_or(0.0, |fade| fade.amount(depth, offset.length()));
-    Some(Served { index, blend, fade })
-}
-
-/// Among the partitions that share the depths of `partitions[first]` (the faces of one
-/// z-partition), the one whose face holds `world` most deeply (the first of equals); `first` itself
-/// if it has no face.
-fn face_serving<T>(
-    partitions: &[T],
-    partition: &impl Fn(&T) -> &Partition,
-    first: usize,
-    world: DVec3,
-) -> usize {
-    let head = partition(&partitions[first]);
-    // Back up to the group's first face: the depth rule finds the first whose far lies beyond,
-    // which is the group's first already, but a Beyond::Last pick is the last partition.
-    let near = head.near;
-    let start = partitions[..first]
-        .iter()
-        .rposition(|p| partition(p).near != near)
-        .map_or(0, |k| k + 1);
-    if head.face.is_none() && start == first {
-        return first;
-    }
-    let mut best = (first, f64::NEG_INFINITY);
-    for (k, p) in partitions.iter().enumerate().skip(start) {
-        let p = partition(p);
-        if p.near != near {
-            break;
-        }
-        let inside = p
-            .face
-            .as_ref()
-            .map_or(f64::INFINITY, |face| face.inside(world));
-        if inside > best.1 {
-            best = (k, inside);
-        }
-    }
-    best.0
-}
-
-/// The next partition and its weight where `depth` lies in the overlap of `partitions[index]` and
-/// the next z-partition.
-fn blend_with_next<T>(
-    partitions: &[T],
-    partition: &impl Fn(&T) -> &Partition,
-    index: usize,
-    depth: f64,
-    world: DVec3,
-) -> Option<(usize, f64)> {
-    let this = partition(&partitions[index]);
-    let next = partitions
-        .iter()
-        .skip(index + 1)
-        .position(|p| partition(p).near != this.near)?
-        + index
-        + 1;
-    let band_start = partition(&partitions[next]).near;
-    if depth < band_start || band_start >= this.far {
-        return None;
-    }
-    let weight = (depth - band_start) / (this.far - band_start);
-    (weight > 0.0).then(|| (face_serving(partitions, partition, next, world), weight))
 }

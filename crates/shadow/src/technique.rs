@@ -4,6 +4,9 @@ use std::fmt;
 
 use shadowlab_params::{ParameterRule, WarpParameter};
 
+use crate::cascade_fit::CascadeFit;
+use crate::selection::SelectionRule;
+
 /// A shadow-map technique: how the light's view and projection are built.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Technique {
@@ -41,8 +44,9 @@ pub enum Technique {
     /// [`crate::plan_light`] with the eye image, not by [`crate::plan`].
     Sdsm(SdsmVariant),
     /// An engine's default shadows ([`crate::presets`]): its cascades, fit, snapping, blending,
-    /// selection and bias, keyed by the engine's name; `ENGINE:unsnapped` without its snapping.
-    Engine(Engine, Stabilisation),
+    /// selection and bias, keyed by the engine's name; `ENGINE:CHOICE+…` with some of them
+    /// chosen otherwise ([`PresetChoices`]: `bevy:unsnapped`, `babylon:fit=sphere+blend=0.2`).
+    Engine(Engine, PresetChoices),
 }
 
 /// Which way the scene-optimized map's descent turns `p̃_4` (CG06 Algorithm 1 step 4).
@@ -308,9 +312,6 @@ fn stated(spec: &str, name: &str) -> Result<Option<f64>, String> {
         })
 }
 
-/// An engine preset's parameter that turns its snapping off.
-const UNSNAPPED: &str = "unsnapped";
-
 impl Technique {
     /// The technique keys, in the order outputs list them.
     pub const KEYS: [&'static str; 7] = [
@@ -375,7 +376,9 @@ impl Technique {
                 Some(choice.to_string())
             }
             Self::Optimal(StepDirection::Refitted) => Some(StepDirection::Refitted.key().into()),
-            Self::Engine(_, Stabilisation::Unsnapped) => Some(UNSNAPPED.into()),
+            Self::Engine(_, choices) if choices != PresetChoices::default() => {
+                Some(choices.to_string())
+            }
             Self::Sdsm(variant) if variant != SdsmVariant::Log => Some(variant.to_string()),
             _ => None,
         }
@@ -398,7 +401,7 @@ impl Technique {
             "optimal" => Self::Optimal(StepDirection::Paper),
             "sdsm" => Self::Sdsm(SdsmVariant::Log),
             _ => match Engine::from_key(key) {
-                Some(engine) => Self::Engine(engine, Stabilisation::Engine),
+                Some(engine) => Self::Engine(engine, PresetChoices::default()),
                 None => {
                     let engines: Vec<&str> = Engine::ALL.iter().map(|e| e.key()).collect();
                     return Err(format!(
@@ -419,12 +422,12 @@ impl Technique {
                 .map(Self::Optimal)
                 .ok_or_else(|| format!("unknown step {p:?} for optimal; known: paper, refit")),
             (Self::Sdsm(_), Some(p)) => SdsmVariant::parse(p).map(Self::Sdsm),
-            (Self::Engine(engine, _), Some(UNSNAPPED)) => {
-                Ok(Self::Engine(engine, Stabilisation::Unsnapped))
+            (Self::Engine(engine, _), Some(p)) => {
+                let choices = PresetChoices::parse(p)
+                    .map_err(|e| format!("{e} (in the {key} preset's {p:?})"))?;
+                engine.check(choices)?;
+                Ok(Self::Engine(engine, choices))
             }
-            (Self::Engine(..), Some(p)) => Err(format!(
-                "unknown parameter {p:?} for the {key} preset; known: {UNSNAPPED}"
-            )),
             (_, Some(p)) => Err(format!(
                 "the parameter {p:?} applies to lispsm, logarithmic, optimal, sdsm and the \
                  engines' presets only, not to {key}"
@@ -471,6 +474,106 @@ pub enum Stabilisation {
     Engine,
     /// Snapping off (`ENGINE:unsnapped`): the same cascades, windows where the fit puts them.
     Unsnapped,
+}
+
+/// What a preset does otherwise than its engine ships it, written after the engine's name as
+/// `+`-joined choices (`bevy:unsnapped`, `godot:fit=box+blend=0.1+select=containing`); the
+/// default changes nothing. [`crate::presets`] says what each means for each engine.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct PresetChoices {
+    /// `unsnapped`: no texel snapping.
+    pub stabilisation: Stabilisation,
+    /// `fit=F` ([`CascadeFit::key`]): every cascade's window fitted so.
+    pub fit: Option<CascadeFit>,
+    /// `blend=W`: the blend band's width (0: no blending).
+    pub blend: Option<BlendWidth>,
+    /// `select=depth` or `select=containing`: the rule that picks a point's cascade.
+    pub select: Option<SelectionRule>,
+}
+
+impl PresetChoices {
+    /// The choices `spec` writes: `+`-joined `unsnapped`, `fit=F`, `blend=W`, `select=R`, each at
+    /// most once.
+    ///
+    /// # Errors
+    /// An unknown or repeated choice, or a value out of its range, named.
+    pub fn parse(spec: &str) -> Result<Self, String> {
+        let mut choices = Self::default();
+        let mut seen: Vec<&str> = Vec::new();
+        for term in spec.split('+').map(str::trim) {
+            let (name, value) = term.split_once('=').unwrap_or((term, ""));
+            if seen.contains(&name) {
+                return Err(format!("{name:?} is chosen twice"));
+            }
+            seen.push(name);
+            match (name, value) {
+                ("unsnapped", "") => choices.stabilisation = Stabilisation::Unsnapped,
+                ("fit", fit) => choices.fit = Some(CascadeFit::parse(fit)?),
+                ("blend", width) => {
+                    let width = width.parse::<f64>().map_err(|_| {
+                        format!("blend={width:?} is not a number: the blend width is in [0, 1)")
+                    })?;
+                    choices.blend = Some(BlendWidth::new(width)?);
+                }
+                ("select", rule) => choices.select = Some(SelectionRule::parse(rule)?),
+                _ => {
+                    return Err(format!(
+                        "unknown preset choice {term:?}; known: unsnapped, fit=F, blend=W, \
+                         select=depth|containing"
+                    ));
+                }
+            }
+        }
+        Ok(choices)
+    }
+}
+
+/// `unsnapped+fit=F+blend=W+select=R`, the choices made, in that order: what [`PresetChoices::parse`]
+/// reads back.
+impl fmt::Display for PresetChoices {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let mut terms = Vec::new();
+        if self.stabilisation == Stabilisation::Unsnapped {
+            terms.push("unsnapped".to_owned());
+        }
+        if let Some(fit) = self.fit {
+            terms.push(format!("fit={fit}"));
+        }
+        if let Some(width) = self.blend {
+            terms.push(format!("blend={}", width.get()));
+        }
+        if let Some(rule) = self.select {
+            terms.push(format!("select={}", rule.key()));
+        }
+        f.write_str(&terms.join("+"))
+    }
+}
+
+/// A blend band's width, as a preset's engine measures it ([`crate::presets`]): in `[0, 1)`, 0
+/// for no blending.
+#[derive(Clone, Copy, Debug, PartialEq, PartialOrd)]
+pub struct BlendWidth(f64);
+
+impl BlendWidth {
+    /// `width ∈ [0, 1)`.
+    ///
+    /// # Errors
+    /// A message naming the width and its range.
+    pub fn new(width: f64) -> Result<Self, String> {
+        if (0.0..1.0).contains(&width) {
+            Ok(Self(width))
+        } else {
+            Err(format!(
+                "blend={width} is out of range: the blend width is in [0, 1), 0 for none"
+            ))
+        }
+    }
+
+    /// The width.
+    #[must_use]
+    pub fn get(self) -> f64 {
+        self.0
+    }
 }
 
 impl Engine {

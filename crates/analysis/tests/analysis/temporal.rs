@@ -47,13 +47,19 @@ fn a_thin_sample_window_keeps_the_initial_map() {
 #[test]
 fn snapping_removes_surface_shimmer_from_sphere_and_diagonal_fits() {
     use shadowlab_analysis::temporal::temporal;
-    use shadowlab_shadow::{Engine, Stabilisation, Technique};
+    use shadowlab_shadow::{Engine, PresetChoices, Stabilisation, Technique};
     let mut scene = builtin_scene("outdoor").unwrap();
     scene.camera.width = 256;
     scene.camera.height = 192;
     let techniques = [
-        Technique::Engine(Engine::Bevy, Stabilisation::Engine),
-        Technique::Engine(Engine::Bevy, Stabilisation::Unsnapped),
+        Technique::Engine(Engine::Bevy, PresetChoices::default()),
+        Technique::Engine(
+            Engine::Bevy,
+            PresetChoices {
+                stabilisation: Stabilisation::Unsnapped,
+                ..PresetChoices::default()
+            },
+        ),
     ];
     let runs = temporal(&scene, &techniques, 5, 512, |_, _| {}).unwrap();
     let surface = |technique: Technique| -> u64 {

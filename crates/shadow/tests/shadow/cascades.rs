@@ -8,8 +8,8 @@ use shadowlab_scene::{BUILTIN_SCENES, builtin_scene};
 use shadowlab_shadow::sdsm::SdsmVariant;
 use shadowlab_shadow::{
     Beyond, CullingSphere, Engine, Eye, Fade, FadeCurve, FocusPolicy, FrameOptions, LightSetup,
-    LightSource, Lookup, Partition, PlanInput, PlanOptions, Selection, SelectionRule,
-    ShadowMapping, Stabilisation, Technique, render_frame, served,
+    LightSource, Lookup, Partition, PlanInput, PlanOptions, PresetChoices, Selection,
+    SelectionRule, ShadowMapping, Stabilisation, Technique, render_frame, served,
 };
 
 const RESOLUTION: u32 = 1024;
@@ -34,16 +34,30 @@ fn input(eye: DVec3, yaw: f64) -> PlanInput {
     }
 }
 
-fn planned(engine: Engine, stabilisation: Stabilisation, input: &PlanInput) -> Vec<Partition> {
+fn planned(engine: Engine, choices: PresetChoices, input: &PlanInput) -> Vec<Partition> {
     engine
         .plan(
             input,
-            Technique::Engine(engine, stabilisation),
-            stabilisation,
+            Technique::Engine(engine, choices),
+            choices,
             RESOLUTION,
         )
         .unwrap()
 }
+
+/// The engine's own choices.
+const SHIPPED: PresetChoices = PresetChoices {
+    stabilisation: Stabilisation::Engine,
+    fit: None,
+    blend: None,
+    select: None,
+};
+
+/// The engine's choices but its snapping.
+const UNSNAPPED: PresetChoices = PresetChoices {
+    stabilisation: Stabilisation::Unsnapped,
+    ..SHIPPED
+};
 
 fn matrices(setup: &LightSetup) -> (DMat4, DMat4) {
     let ShadowMapping::Projective { view, projection } = setup.mapping else {
@@ -68,19 +82,28 @@ fn window_origin(setup: &LightSetup) -> (f64, f64) {
     )
 }
 
+/// Claim: the engines' sphere and diagonal fits keep their windows' size as the camera turns, and
+/// so do Babylon's and Filament's cascades with such a fit chosen (`babylon:fit=sphere`,
+/// `filament:fit=diagonal`); Babylon's own box of the corners does not.
 #[test]
 fn sphere_and_diagonal_fits_do_not_change_when_the_camera_turns() {
     let eye = DVec3::new(3.0, 5.0, 7.0);
-    for engine in [
-        Engine::Bevy,
-        Engine::Godot,
-        Engine::ThreeJs,
-        Engine::Unity,
-        Engine::Unreal,
+    let chosen = |spec: &str| match Technique::parse_spec(spec).unwrap() {
+        Technique::Engine(engine, choices) => (engine, choices),
+        other => panic!("{spec} is {other}"),
+    };
+    for (engine, choices) in [
+        (Engine::Bevy, SHIPPED),
+        (Engine::Godot, SHIPPED),
+        (Engine::ThreeJs, SHIPPED),
+        (Engine::Unity, SHIPPED),
+        (Engine::Unreal, SHIPPED),
+        chosen("babylon:fit=sphere"),
+        chosen("filament:fit=diagonal"),
     ] {
-        let reference = planned(engine, Stabilisation::Engine, &input(eye, 0.0));
+        let reference = planned(engine, choices, &input(eye, 0.0));
         for yaw in [0.3, 1.1, 2.9, -2.0] {
-            let turned = planned(engine, Stabilisation::Engine, &input(eye, yaw));
+            let turned = planned(engine, choices, &input(eye, yaw));
             assert_eq!(turned.len(), reference.len());
             for (a, b) in reference.iter().zip(&turned) {
                 let ((wa, ha), (wb, hb)) = (window_size(&a.setup), window_size(&b.setup));
@@ -106,10 +129,112 @@ fn sphere_and_diagonal_fits_do_not_change_when_the_camera_turns() {
     }
     // Babylon's box of the corners turns with the camera: its size changes.
     let (a, b) = (
-        planned(Engine::Babylon, Stabilisation::Engine, &input(eye, 0.0)),
-        planned(Engine::Babylon, Stabilisation::Engine, &input(eye, 0.7)),
+        planned(Engine::Babylon, SHIPPED, &input(eye, 0.0)),
+        planned(Engine::Babylon, SHIPPED, &input(eye, 0.7)),
     );
     assert_ne!(window_size(&a[0].setup), window_size(&b[0].setup));
+}
+
+/// Claim: a preset's choices read back as written (`Technique::spec`), in one order whatever the
+/// order given; a bad choice is refused with a message naming it.
+#[test]
+fn preset_choices_round_trip_and_bad_ones_are_named() {
+    for (given, written) in [
+        ("bevy:unsnapped", "bevy:unsnapped"),
+        ("babylon:fit=sphere", "babylon:fit=sphere"),
+        (
+            "godot:select=containing+blend=0.25+fit=box+unsnapped",
+            "godot:unsnapped+fit=box+blend=0.25+select=containing",
+        ),
+        ("threejs:blend=0", "threejs:blend=0"),
+        ("unity:select=depth", "unity:select=depth"),
+        ("filament:fit=diagonal-ceil", "filament:fit=diagonal-ceil"),
+    ] {
+        let technique = Technique::parse_spec(given).unwrap();
+        assert_eq!(technique.spec(), written);
+        assert_eq!(Technique::parse_spec(written).unwrap(), technique);
+    }
+    for (bad, named) in [
+        ("bevy:fit=circle", "circle"),
+        ("bevy:blend=1", "blend=1"),
+        ("bevy:blend=-0.1", "blend=-0.1"),
+        ("bevy:blend=wide", "wide"),
+        ("bevy:fit=box+fit=sphere", "\"fit\" is chosen twice"),
+        ("bevy:select=nearest", "nearest"),
+        ("bevy:stable", "stable"),
+        ("filament:blend=0.1", "filament renders one cascade"),
+        ("unity:blend=0", "unity renders one cascade"),
+    ] {
+        let error = Technique::parse_spec(bad).unwrap_err();
+        assert!(error.contains(named), "{bad}: {error}");
+    }
+}
+
+/// Claim: `blend=W` sets the band in the engine's own measure — Bevy's overlap of the previous
+/// far bound, Babylon's fraction of each cascade's length — and turns the blend on for engines
+/// that do not blend (Godot's bands as Babylon's) or off at 0; `select=` sets the rule.
+#[test]
+fn preset_blend_widths_and_selection_are_the_engines_measures() {
+    let choices = |spec: &str| match Technique::parse_spec(spec).unwrap() {
+        Technique::Engine(_, choices) => choices,
+        other => panic!("{spec} is {other}"),
+    };
+    let (near, far) = (0.1, 400.0);
+    let starts = |engine: Engine, spec: &str| -> Vec<f64> {
+        engine
+            .slices(near, far, choices(spec).blend)
+            .unwrap()
+            .iter()
+            .map(|s| s.select.0)
+            .collect()
+    };
+    let ends = |engine: Engine| -> Vec<f64> {
+        engine
+            .slices(near, far, None)
+            .unwrap()
+            .iter()
+            .map(|s| s.select.1)
+            .collect()
+    };
+    // Bevy: cascade i starts at (1 − W)·b_{i−1}; W = 0 abuts them.
+    let bevy = ends(Engine::Bevy);
+    for (spec, w) in [("bevy:blend=0.5", 0.5), ("bevy:blend=0", 0.0)] {
+        let got = starts(Engine::Bevy, spec);
+        for i in 1..got.len() {
+            assert!(
+                (got[i] - (1.0 - w) * bevy[i - 1]).abs() < 1e-12,
+                "{spec}: {got:?}"
+            );
+        }
+    }
+    assert!(!Engine::Bevy.selection(choices("bevy:blend=0")).blend);
+    assert!(Engine::Bevy.selection(choices("bevy:blend=0.5")).blend);
+    // Babylon and Godot: the last W of each cascade's own length.
+    for (engine, spec) in [
+        (Engine::Babylon, "babylon:blend=0.3"),
+        (Engine::Godot, "godot:blend=0.3"),
+    ] {
+        let ends = ends(engine);
+        let got = starts(engine, spec);
+        let mut previous = near;
+        for i in 1..got.len() {
+            let expected = ends[i - 1] - 0.3 * (ends[i - 1] - previous);
+            assert!((got[i] - expected).abs() < 1e-9, "{spec}: {got:?}");
+            previous = ends[i - 1];
+        }
+        assert!(engine.selection(choices(spec)).blend, "{spec}");
+    }
+    assert!(!Engine::Godot.selection(choices("godot:select=depth")).blend);
+    assert_eq!(
+        Engine::Bevy
+            .selection(choices("bevy:select=containing"))
+            .rule,
+        SelectionRule::Containing
+    );
+    assert_eq!(
+        Engine::Unity.selection(choices("unity:select=depth")).rule,
+        SelectionRule::Depth
+    );
 }
 
 #[test]
@@ -125,15 +250,11 @@ fn snapped_windows_move_in_whole_texels_and_unsnapped_ones_do_not() {
         for step in 1..6 {
             let shift = DVec3::new(0.0137 * f64::from(step), 0.0, 0.0291 * f64::from(step));
             let (a, b) = (input(DVec3::ZERO, 0.2), input(shift, 0.2));
-            for (stabilisation, snapped) in [
-                (Stabilisation::Engine, true),
-                (Stabilisation::Unsnapped, false),
-            ] {
-                for (pa, pb) in planned(engine, stabilisation, &a).iter().zip(&planned(
-                    engine,
-                    stabilisation,
-                    &b,
-                )) {
+            for (choices, snapped) in [(SHIPPED, true), (UNSNAPPED, false)] {
+                for (pa, pb) in planned(engine, choices, &a)
+                    .iter()
+                    .zip(&planned(engine, choices, &b))
+                {
                     let (w, _) = window_size(&pa.setup);
                     let grid = texels * w / f64::from(RESOLUTION);
                     let ((xa, _), (xb, _)) = (window_origin(&pa.setup), window_origin(&pb.setup));
@@ -169,13 +290,9 @@ fn snapped_windows_move_in_whole_texels_and_unsnapped_ones_do_not() {
 
 /// Partitions at the given selection depths, each a map of nothing in particular.
 fn partitions(bounds: &[(f64, f64)]) -> Vec<Partition> {
-    let setup = planned(
-        Engine::Bevy,
-        Stabilisation::Engine,
-        &input(DVec3::ZERO, 0.0),
-    )[0]
-    .setup
-    .clone();
+    let setup = planned(Engine::Bevy, SHIPPED, &input(DVec3::ZERO, 0.0))[0]
+        .setup
+        .clone();
     bounds
         .iter()
         .map(|&(near, far)| Partition {
@@ -264,6 +381,27 @@ fn containment_selection_takes_the_first_sphere_holding_the_point() {
     // Eye depth 9, but outside the first sphere: the second serves it (by depth, the first would).
     assert_eq!(at(DVec3::new(5.0, 0.0, -9.0)), Some(1));
     assert_eq!(at(DVec3::new(0.0, 0.0, -60.0)), None);
+
+    // Blended (a preset's `select=containing` with its blend): the band applies by eye depth after
+    // the rule — in the overlap of the first map and the next, both weigh; beyond the first's far
+    // end, though inside its sphere, the first serves alone.
+    let mut overlapping = partitions(&[(0.1, 10.0), (8.0, 50.0)]);
+    overlapping[0].sphere = Some(CullingSphere {
+        centre: DVec3::new(0.0, 0.0, -5.0),
+        radius: 7.0,
+    });
+    let blended = Selection {
+        blend: true,
+        ..unity
+    };
+    let at = |p: DVec3| served(&overlapping, |p| p, &blended, &eye(), p);
+    let band = at(DVec3::new(0.0, 0.0, -9.0)).unwrap();
+    assert_eq!(band.index, 0);
+    let (next, weight) = band.blend.expect("blended in the band");
+    assert_eq!(next, 1);
+    assert!((weight - 0.5).abs() < 1e-12, "{weight}");
+    let beyond = at(DVec3::new(0.0, 0.0, -11.0)).unwrap();
+    assert_eq!((beyond.index, beyond.blend), (0, None));
 }
 
 #[test]
@@ -290,7 +428,7 @@ fn fades_rise_from_start_to_end() {
 fn every_preset_and_sdsm_variant_renders_every_builtin_scene() {
     let techniques: Vec<Technique> = Engine::ALL
         .into_iter()
-        .map(|engine| Technique::Engine(engine, Stabilisation::Engine))
+        .map(|engine| Technique::Engine(engine, SHIPPED))
         .chain(SdsmVariant::ALL.into_iter().map(Technique::Sdsm))
         .collect();
     for name in BUILTIN_SCENES {
@@ -334,21 +472,21 @@ fn every_preset_and_sdsm_variant_renders_every_builtin_scene() {
 fn presets_read_their_maps_with_their_engines_bias() {
     let planned_input = input(DVec3::new(3.0, 5.0, 7.0), 0.4);
     let spec = |engine: Engine, k: usize| {
-        let parts = planned(engine, Stabilisation::Engine, &planned_input);
+        let parts = planned(engine, SHIPPED, &planned_input);
         engine.bias(&parts[k], RESOLUTION).to_string()
     };
     assert_eq!(spec(Engine::Bevy, 2), "normal:1.8+light:0.02");
     assert_eq!(spec(Engine::Babylon, 0), "constant:2.5e-5");
     assert_eq!(spec(Engine::ThreeJs, 1), "constant:-1e-6");
     for k in 0..4 {
-        let parts = planned(Engine::Godot, Stabilisation::Engine, &planned_input);
+        let parts = planned(Engine::Godot, SHIPPED, &planned_input);
         let radius = parts[k].sphere.unwrap().radius;
         let bias = Engine::Godot.bias(&parts[k], RESOLUTION);
         let light = bias.toward_light.unwrap();
         assert!((light - 0.001 * (2.0 * radius + 20.0) * 2.0).abs() < 1e-12);
         assert_eq!(bias.normal.unwrap().to_string(), "normal-lateral:2.0");
     }
-    let unity = planned(Engine::Unity, Stabilisation::Engine, &planned_input);
+    let unity = planned(Engine::Unity, SHIPPED, &planned_input);
     let (width, _) = window_size(&unity[0].setup);
     let bias = Engine::Unity.bias(&unity[0], RESOLUTION);
     assert!((bias.toward_light.unwrap() - width / f64::from(RESOLUTION)).abs() < 1e-12);
