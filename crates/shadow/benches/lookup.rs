@@ -1,0 +1,71 @@
+//! Criterion benchmark of the lookup path: every visible pixel of the built-in `outdoor` scene
+//! (1024 × 768) looked up in its light's maps — the serving map chosen (`served`: depth or
+//! containment, blend band, fade), the bias applied, the filter read — as `render_shadows` times
+//! its lookup phase (`Timings::lookup`): the eye pass is made once, and each iteration plans and
+//! renders the maps untimed, so only the lookup is measured (`iter_custom`).
+//!
+//! Cases, all at 2048² per map with shadowlab's default bias: LiSPSM with one map, nearest and
+//! 3×3 PCF; LiSPSM with four practical partitions (λ = 0.5), nearest; and Bevy's preset (four
+//! blended cascades read with its normal offset), where the technique exists. The file compiles
+//! against older commits of the crate as well, so the same cases measure the lookup before and
+//! after a change (docs/benchmarks.md). Everything is deterministic.
+
+use std::time::Duration;
+
+use criterion::{Criterion, criterion_group, criterion_main};
+use shadowlab_raster::DepthFormat;
+use shadowlab_scene::builtin_scene;
+use shadowlab_shadow::{
+    Bias, Filter, FrameOptions, Lookup, PlanOptions, Splits, Technique, eye_pass, render_shadows,
+};
+
+/// The side of every map.
+const RESOLUTION: u32 = 2048;
+
+fn lookup(c: &mut Criterion) {
+    let scene = builtin_scene("outdoor").expect("the built-in outdoor scene");
+    let (eye, nearest_visible) = eye_pass(&scene).expect("the eye pass");
+    let lispsm = Technique::parse("lispsm", None).expect("lispsm");
+    let mut cases = vec![
+        ("lispsm/1/nearest", lispsm, 1, Filter::Nearest),
+        ("lispsm/1/pcf3", lispsm, 1, Filter::Pcf { size: 3 }),
+        ("lispsm/4/nearest", lispsm, 4, Filter::Nearest),
+    ];
+    // Older commits have no presets: the case is left out there.
+    if let Ok(bevy) = Technique::parse("bevy", None) {
+        cases.push(("bevy/nearest", bevy, 4, Filter::Nearest));
+    }
+    let mut group = c.benchmark_group("lookup");
+    group.sample_size(20);
+    group.warm_up_time(Duration::from_secs(1));
+    group.measurement_time(Duration::from_secs(4));
+    for (name, technique, partitions, filter) in cases {
+        let options = FrameOptions {
+            plan: PlanOptions {
+                partitions,
+                splits: Splits::Practical { weight: 0.5 },
+                ..PlanOptions::new(technique)
+            },
+            resolution: RESOLUTION,
+            format: DepthFormat::F32,
+            lookup: Lookup::new(Bias::DEFAULT, filter),
+            snap_texels: 0,
+        };
+        group.bench_function(format!("outdoor/{name}"), |b| {
+            b.iter_custom(|iterations| {
+                (0..iterations)
+                    .map(|_| {
+                        render_shadows(&scene, &options, &eye, nearest_visible, None)
+                            .expect("the shadows")
+                            .timings
+                            .lookup
+                    })
+                    .sum()
+            });
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, lookup);
+criterion_main!(benches);
