@@ -492,7 +492,7 @@ fn csv(study: &Study) -> Result<String, AnalysisError> {
          time_spread_ms,attribution_ms\n",
     );
     // The columns after `visible`, empty where the technique is not defined.
-    let measured_columns = out.split(',').count() - 7;
+    let measured_columns = out.split(',').skip_while(|c| *c != "visible").count() - 1;
     for m in &study.measurements {
         let s = &m.setting;
         let prefix = format!(
