@@ -16,7 +16,10 @@ out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 
 engines=bevy,filament,godot,babylon,threejs,unity,unreal
-studied="$engines,sdsm,sdsm:kmeans,lispsm,uniform,optimal"
+# Some of the presets' choices, each against its engine's default: Babylon's cascades fitted by a
+# sphere, Bevy without its blend, Godot with a 10 % linear band.
+choices=babylon:fit=sphere,bevy:blend=0,godot:blend=0.1
+studied="$engines,$choices,sdsm,sdsm:kmeans,lispsm,uniform,optimal"
 unsnapped=bevy:unsnapped,filament:unsnapped,godot:unsnapped,babylon:unsnapped,threejs:unsnapped,unity:unsnapped,unreal:unsnapped
 
 echo "<!-- $(date -u +%F), commit $(git rev-parse --short HEAD), $(lscpu | sed -n 's/^Model name: *//p'), $(nproc) CPUs; side $side, $frames frames -->"
@@ -24,7 +27,7 @@ for scene in outdoor dueling-frusta cad-lattice chess-spot bunny; do
   "$bin" analyze "$scene" --techniques "$studied" --partitions 4 --resolutions "$side" \
     --timing-runs 3 --out "$out/$scene" >/dev/null
   "$bin" temporal "$scene" --frames "$frames" --resolution "$side" \
-    --techniques "$engines,$unsnapped,sdsm,lispsm,uniform" --out "$out/$scene-walk" >/dev/null
+    --techniques "$engines,$unsnapped,$choices,sdsm,lispsm,uniform" --out "$out/$scene-walk" >/dev/null
   python3 - "$scene" "$out/$scene/results.json" "$out/$scene-walk/temporal.csv" <<'EOF'
 import csv, json, sys
 scene, results, walk = sys.argv[1:4]
