@@ -15,7 +15,8 @@
 //!
 //! # Choices ([`PresetChoices`], `ENGINE:CHOICE+…`)
 //! A preset's fit, blend width and selection rule can be chosen otherwise, each a knob beside
-//! `unsnapped`; everything else stays the engine's:
+//! `unsnapped`; everything else stays the engine's. They shape a directional light's cascades (a
+//! spot light's one map does not change):
 //! - `fit=F` ([`CascadeFit`]): every cascade fitted so, snapped as the engine snaps. Filament's
 //!   default is no cascade fit but LiSPSM per cascade; with `fit=F` it gets that fit and no
 //!   snapping (its 2-texel snap belongs to its `stable` mode, not reproduced).
