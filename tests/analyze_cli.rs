@@ -312,37 +312,36 @@ fn bad_input_exits_with_2_names_the_problem_and_writes_nothing() {
     }
 }
 
-/// Claim: the engines' presets and SDSM are techniques of `analyze`: a preset's combination has its
-/// engine's cascade count as its maps whatever `--partitions` says, and every combination's errors
-/// are given causes that sum to them.
-#[test]
-fn analyze_measures_engine_presets_and_sdsm_with_causes() {
+/// `analyze` of the test scene with `techniques` at 256², one timing run, and the `extra`
+/// arguments: its `results.json`'s measurements.
+fn measured(techniques: &str, extra: &[&str]) -> Vec<serde_json::Value> {
     let scenes = tempfile::tempdir().unwrap();
     let scene = scene_file(scenes.path());
     let out = tempfile::tempdir().unwrap();
-    let output = shadowlab(
-        &[
-            "analyze",
-            &scene,
-            "--techniques",
-            "bevy,godot:unsnapped,unity,sdsm:kmeans",
-            "--resolutions",
-            "256",
-            "--partitions",
-            "2",
-            "--timing-runs",
-            "1",
-            "--out",
-            out.path().to_str().unwrap(),
-        ],
-        None,
-    );
+    let mut args = vec![
+        "analyze",
+        &scene,
+        "--techniques",
+        techniques,
+        "--resolutions",
+        "256",
+        "--timing-runs",
+        "1",
+        "--out",
+        out.path().to_str().unwrap(),
+    ];
+    args.extend(extra);
+    let output = shadowlab(&args, None);
     assert!(output.status.success(), "{}", stderr(&output));
     let json: serde_json::Value =
         serde_json::from_str(&fs::read_to_string(out.path().join("results.json")).unwrap())
             .unwrap();
-    let measurements = json["measurements"].as_array().unwrap();
-    let maps: Vec<(String, u64)> = measurements
+    json["measurements"].as_array().unwrap().clone()
+}
+
+/// Each measurement's technique label and number of maps.
+fn labels_and_maps(measurements: &[serde_json::Value]) -> Vec<(String, u64)> {
+    measurements
         .iter()
         .map(|m| {
             (
@@ -350,9 +349,20 @@ fn analyze_measures_engine_presets_and_sdsm_with_causes() {
                 m["setting"]["maps"].as_u64().unwrap(),
             )
         })
-        .collect();
+        .collect()
+}
+
+/// Claim: the engines' presets and SDSM are techniques of `analyze`: a preset's combination has its
+/// engine's cascade count as its maps whatever `--partitions` says, and every combination's errors
+/// are given causes that sum to them.
+#[test]
+fn analyze_measures_engine_presets_and_sdsm_with_causes() {
+    let measurements = measured(
+        "bevy,godot:unsnapped,unity,sdsm:kmeans",
+        &["--partitions", "2"],
+    );
     assert_eq!(
-        maps,
+        labels_and_maps(&measurements),
         [
             ("bevy".to_string(), 4),
             ("godot/unsnapped".to_string(), 4),
@@ -360,7 +370,7 @@ fn analyze_measures_engine_presets_and_sdsm_with_causes() {
             ("sdsm/kmeans".to_string(), 2)
         ]
     );
-    for m in measurements {
+    for m in &measurements {
         let count = |k: &str| m[k].as_u64().unwrap();
         let causes: u64 = [
             "acne",
@@ -386,53 +396,25 @@ fn analyze_measures_engine_presets_and_sdsm_with_causes() {
 /// does not apply is refused with exit 2, naming preset and choice, and nothing is written.
 #[test]
 fn analyze_measures_preset_choices_and_refuses_bad_ones() {
-    let scenes = tempfile::tempdir().unwrap();
-    let scene = scene_file(scenes.path());
-    let out = tempfile::tempdir().unwrap();
-    let output = shadowlab(
-        &[
-            "analyze",
-            &scene,
-            "--techniques",
-            "babylon,babylon:blend=0.2+fit=sphere,godot:select=containing+blend=0.1,filament:fit=sphere",
-            "--resolutions",
-            "256",
-            "--timing-runs",
-            "1",
-            "--out",
-            out.path().to_str().unwrap(),
-        ],
-        None,
+    let measurements = measured(
+        "babylon,babylon:blend=0.2+fit=sphere,godot:select=containing+blend=0.1,filament:fit=sphere",
+        &[],
     );
-    assert!(output.status.success(), "{}", stderr(&output));
-    let json: serde_json::Value =
-        serde_json::from_str(&fs::read_to_string(out.path().join("results.json")).unwrap())
-            .unwrap();
-    let measured: Vec<(String, u64, u64)> = json["measurements"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|m| {
-            (
-                m["setting"]["technique"].as_str().unwrap().to_string(),
-                m["setting"]["maps"].as_u64().unwrap(),
-                m["misclassified"].as_u64().unwrap(),
-            )
-        })
-        .collect();
-    let labels: Vec<(&str, u64)> = measured.iter().map(|(t, m, _)| (t.as_str(), *m)).collect();
     assert_eq!(
-        labels,
+        labels_and_maps(&measurements),
         [
-            ("babylon", 4),
-            ("babylon/fit=sphere+blend=0.2", 4),
-            ("godot/blend=0.1+select=containing", 4),
-            ("filament/fit=sphere", 1)
+            ("babylon".to_string(), 4),
+            ("babylon/fit=sphere+blend=0.2".to_string(), 4),
+            ("godot/blend=0.1+select=containing".to_string(), 4),
+            ("filament/fit=sphere".to_string(), 1)
         ]
     );
+    let misclassified = |k: usize| measurements[k]["misclassified"].as_u64().unwrap();
     // Another fit and band are other maps: Babylon's errors change.
-    assert_ne!(measured[0].2, measured[1].2, "{measured:?}");
+    assert_ne!(misclassified(0), misclassified(1));
 
+    let scenes = tempfile::tempdir().unwrap();
+    let scene = scene_file(scenes.path());
     let refused = tempfile::tempdir().unwrap();
     let target = refused.path().join("out");
     let output = shadowlab(
