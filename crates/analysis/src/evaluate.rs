@@ -30,7 +30,7 @@ use crate::classify::LIT_THRESHOLD;
 use crate::setup_file::{
     DEPTH_IMAGE_SLACK_BYTES, DepthImage, ImageKind, Setup, SetupError, SetupPartition, read_bounded,
 };
-use crate::study::{Measurement, Pictures, Setting, Study, attributed, frame_footprints, outcome};
+use crate::study::{Measurement, Pictures, Setting, Study, attributed, footprinted, outcome};
 use crate::temporal::{Stability, shimmer};
 use crate::truth::{exact_truth, scene_bvh};
 
@@ -178,7 +178,7 @@ pub fn evaluate_observed<E: From<SetupError>>(
         let mut shadows = shadows_of(&moved, &eye, lights, Some(&bvh)).map_err(SetupError::from)?;
         shadows.timings.shadow_pass += reading;
 
-        let per_pixel = frame_footprints(&moved, &eye, &shadows);
+        let footprints = footprinted(&moved, &eye, &shadows);
         // Each partition's errors are attributed with the filter it was looked up with.
         let attribution = attributed(
             &moved,
@@ -196,13 +196,13 @@ pub fn evaluate_observed<E: From<SetupError>>(
                 &moved,
                 (&eye, &truth),
                 &shadows,
-                &per_pixel,
+                &footprints.0,
                 &attribution.0,
             )]
         } else {
             Vec::new()
         };
-        let measured = outcome(&truth, &shadows, &per_pixel, &attribution);
+        let measured = outcome(&truth, &shadows, &footprints, &attribution);
 
         let states: States = match shadows.lit.first() {
             Some(lit) => eye
@@ -252,7 +252,7 @@ pub fn evaluate_observed<E: From<SetupError>>(
                 index: k,
                 eye: &eye,
                 shadows: &shadows,
-                footprints: &per_pixel,
+                footprints: &footprints.0,
             },
         )?;
     }

@@ -278,15 +278,16 @@ fn document(study: &Study) -> Vec<Block> {
         );
         table(
             &mut doc,
-            "Time per frame, ms: total (planning + shadow pass + lookup); attributing the errors \
-             (the analysis's time, not in the total)",
+            "Time per frame, ms: total (planning + shadow pass + lookup); then the analysis's own \
+             time, not in the total: measuring the footprints, attributing the errors",
             &|o| {
                 format!(
-                    "{:.1} ({:.1} + {:.1} + {:.1}); {:.1}",
+                    "{:.1} ({:.1} + {:.1} + {:.1}); {:.1}, {:.1}",
                     ms(o.time()),
                     ms(o.planning),
                     ms(o.shadow_pass),
                     ms(o.lookup),
+                    ms(o.footprints),
                     ms(o.attribution)
                 )
             },
@@ -489,7 +490,7 @@ fn csv(study: &Study) -> Result<String, AnalysisError> {
          acne,peter_panning,seam_band,seam_boundary,aliasing,seam,\
          footprint_max,footprint_p99,footprint_mean,perspective_max,perspective_p99,perspective_mean,\
          projection_max,projection_p99,projection_mean,planning_ms,shadow_pass_ms,lookup_ms,time_ms,\
-         time_spread_ms,attribution_ms\n",
+         time_spread_ms,attribution_ms,footprints_ms\n",
     );
     // The columns after `visible`, empty where the technique is not defined.
     let measured_columns = out.split(',').skip_while(|c| *c != "visible").count() - 1;
@@ -521,6 +522,7 @@ fn csv(study: &Study) -> Result<String, AnalysisError> {
                     fields.push(format!("{:?}", ms(d)));
                 }
                 fields.push(format!("{:?}", ms(o.attribution)));
+                fields.push(format!("{:?}", ms(o.footprints)));
                 writeln!(out, "{}", fields.join(",")).unwrap();
             }
             Err(_) => writeln!(
@@ -570,7 +572,7 @@ fn json(study: &Study) -> Value {
                         "aliasing": o.causes.aliasing,
                         "texels": o.texels,
                         "footprint": {"total": stats(&o.footprint[0]), "perspective": stats(&o.footprint[1]), "projection": stats(&o.footprint[2])},
-                        "ms": {"planning": ms(o.planning), "shadow_pass": ms(o.shadow_pass), "lookup": ms(o.lookup), "total": ms(o.time()), "spread": ms(o.time_spread), "attribution": ms(o.attribution)},
+                        "ms": {"planning": ms(o.planning), "shadow_pass": ms(o.shadow_pass), "lookup": ms(o.lookup), "total": ms(o.time()), "spread": ms(o.time_spread), "attribution": ms(o.attribution), "footprints": ms(o.footprints)},
                     })
                 }
                 Err(reason) => json!({"setting": base, "not_defined": reason}),

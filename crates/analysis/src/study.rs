@@ -146,6 +146,9 @@ pub struct Outcome {
     /// The time the analysis took to attribute the errors to causes (first run; not the
     /// technique's, so not part of [`Outcome::time`]).
     pub attribution: Duration,
+    /// The time the analysis took to measure every pixel's texel footprint and their statistics
+    /// (first run; not part of [`Outcome::time`] either).
+    pub footprints: Duration,
     /// Half the range of the total times over the timing runs ([`StudyOptions::timing_runs`]):
     /// the planning, shadow-pass and lookup times are the median run's, and a time is known to
     /// within ± this. Zero for one run.
@@ -334,12 +337,19 @@ pub fn measure(
     bvh: &Bvh,
 ) -> Result<Outcome, AnalysisError> {
     let attributed = attributed(scene, eye, truth, shadows, |_, _| filter, bvh)?;
-    Ok(outcome(
-        truth,
-        shadows,
-        &frame_footprints(scene, eye, shadows),
-        &attributed,
-    ))
+    let footprints = footprinted(scene, eye, shadows);
+    Ok(outcome(truth, shadows, &footprints, &attributed))
+}
+
+/// The per-pixel footprints of `shadows` ([`frame_footprints`]) and the time they took.
+pub(crate) fn footprinted(
+    scene: &Scene,
+    eye: &EyeImage,
+    shadows: &Shadows,
+) -> (Vec<Option<Footprint>>, Duration) {
+    let start = Instant::now();
+    let per_pixel = frame_footprints(scene, eye, shadows);
+    (per_pixel, start.elapsed())
 }
 
 /// The attribution of `shadows`' errors ([`attribute`]; `filter(light, partition)`) and its time.
@@ -364,14 +374,22 @@ pub(crate) fn attributed(
 }
 
 /// The outcome of shadows whose per-pixel footprints are `per_pixel` and whose errors are
-/// attributed as `attribution`, in the time given.
+/// attributed as `attribution`, each measured in the time given; the footprints' statistics are
+/// timed here and added to theirs.
 pub(crate) fn outcome(
     truth: &Truth,
     shadows: &Shadows,
-    per_pixel: &[Option<Footprint>],
+    (per_pixel, footprint_time): &(Vec<Option<Footprint>>, Duration),
     (attribution, attribution_time): &(Attribution, Duration),
 ) -> Outcome {
+    let start = Instant::now();
     let part = |f: fn(&Footprint) -> f64| stats(per_pixel.iter().flatten().map(f));
+    let footprint = [
+        part(|f| f.total),
+        part(|f| f.perspective),
+        part(|f| f.projection),
+    ];
+    let footprints = *footprint_time + start.elapsed();
     Outcome {
         errors: misclassification(truth, &shadows.lit),
         causes: attribution.counts,
@@ -381,15 +399,12 @@ pub(crate) fn outcome(
             .flat_map(|l| &l.maps)
             .map(|(_, map)| u64::from(map.resolution) * u64::from(map.resolution))
             .sum(),
-        footprint: [
-            part(|f| f.total),
-            part(|f| f.perspective),
-            part(|f| f.projection),
-        ],
+        footprint,
         planning: shadows.timings.planning,
         shadow_pass: shadows.timings.shadow_pass,
         lookup: shadows.timings.lookup,
         attribution: *attribution_time,
+        footprints,
         time_spread: Duration::ZERO,
     }
 }
@@ -471,7 +486,7 @@ pub fn run_observed<E: From<AnalysisError>>(
         progress(k, all.len(), Some(setting));
         let outcome = match render(scene, options, setting, &eye, &bvh) {
             Ok(shadows) => {
-                let per_pixel = frame_footprints(scene, &eye.image, &shadows);
+                let footprints = footprinted(scene, &eye.image, &shadows);
                 let attribution = attributed(
                     scene,
                     &eye.image,
@@ -489,7 +504,7 @@ pub fn run_observed<E: From<AnalysisError>>(
                         scene,
                         (&eye.image, &truth),
                         &shadows,
-                        &per_pixel,
+                        &footprints.0,
                         &attribution.0,
                     ));
                 }
@@ -498,12 +513,12 @@ pub fn run_observed<E: From<AnalysisError>>(
                     eye: &eye,
                     truth: &truth,
                     shadows: &shadows,
-                    footprints: &per_pixel,
+                    footprints: &footprints.0,
                 })?;
-                let mut measured = outcome(&truth, &shadows, &per_pixel, &attribution);
+                let mut measured = outcome(&truth, &shadows, &footprints, &attribution);
                 let mut runs = vec![shadows.timings];
                 // The timing runs need none of the first run's buffers.
-                drop((shadows, per_pixel, attribution));
+                drop((shadows, footprints, attribution));
                 for _ in 1..options.timing_runs {
                     runs.push(
                         render(scene, options, setting, &eye, &bvh)
@@ -586,6 +601,7 @@ mod tests {
             shadow_pass: Duration::ZERO,
             lookup: Duration::ZERO,
             attribution: Duration::ZERO,
+            footprints: Duration::ZERO,
             time_spread: Duration::ZERO,
         };
         time_from_runs(&mut o, runs);

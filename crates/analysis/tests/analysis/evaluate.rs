@@ -99,6 +99,7 @@ fn untimed(outcome: &Outcome) -> Outcome {
         shadow_pass: Duration::ZERO,
         lookup: Duration::ZERO,
         attribution: Duration::ZERO,
+        footprints: Duration::ZERO,
         time_spread: Duration::ZERO,
         ..outcome.clone()
     }
