@@ -301,7 +301,8 @@ pub fn stats(values: impl Iterator<Item = f64>) -> AliasingStats {
         .filter(|v| !v.is_nan())
         .map(|v| flip(v.to_bits().cast_signed()))
         .collect();
-    keys.sort_unstable();
+    // In parallel: integers have one sorted order, so any thread count gives the same one.
+    keys.par_sort_unstable();
     let sorted: Vec<f64> = keys
         .into_iter()
         .map(|key| f64::from_bits(flip(key).cast_unsigned()))
