@@ -61,7 +61,7 @@
 //! σ_max may pick another, so there the perspective part is a definition (the quotient), not a
 //! separate measurement.
 
-use glam::{DMat2, DMat4, DVec2, DVec3};
+use glam::{DMat2, DMat4, DVec2, DVec3, DVec4};
 use rayon::prelude::*;
 use shadowlab_raster::{EyeImage, NO_TRIANGLE};
 use shadowlab_scene::Camera;
@@ -111,21 +111,74 @@ impl<'a> Prepared<'a> {
         }
     }
 
-    /// The derivative of the window coordinates `(x, y)` at `point` along `direction`
-    /// (`direction` per unit, window units). `None` where the mapping does not map the point.
-    fn derivative(&self, point: DVec3, direction: DVec3) -> Option<DVec2> {
+    /// The mapping at `point`, ready for derivatives there; `None` where it does not map the
+    /// point (behind a projective map's centre).
+    fn at(&self, point: DVec3) -> Option<At<'_>> {
         match self {
             Self::Projective(m) => {
-                let (p, dp) = (*m * point.extend(1.0), *m * direction.extend(0.0));
-                if p.w <= 0.0 {
+                let clip = *m * point.extend(1.0);
+                if clip.w <= 0.0 {
                     return None;
                 }
+                Some(At::Projective { m, clip })
+            }
+            Self::Logarithmic(map) => Some(At::Logarithmic { map, point }),
+        }
+    }
+}
+
+/// A mapping at one point: what its derivatives there share.
+enum At<'a> {
+    /// A projective map and the point's clip coordinates (`w` not `≤ 0`).
+    Projective { m: &'a DMat4, clip: DVec4 },
+    /// The logarithmic map and the point.
+    Logarithmic {
+        map: &'a LogarithmicMap,
+        point: DVec3,
+    },
+}
+
+impl At<'_> {
+    /// The derivative of the window coordinates `(x, y)` along `direction` (per unit, window
+    /// units); `None` where the logarithmic map has none.
+    fn derivative(&self, direction: DVec3) -> Option<DVec2> {
+        match self {
+            Self::Projective { m, clip: p } => {
+                let dp = **m * direction.extend(0.0);
                 // Window = (ndc + 1)/2: half the derivative of p_k/p_w.
                 let d = |k: usize| 0.5 * (dp[k] * p.w - p[k] * dp.w) / (p.w * p.w);
                 Some(DVec2::new(d(0), d(1)))
             }
             // Window = (ndc + 1)/2.
-            Self::Logarithmic(map) => Some(map.ndc_derivative(point, direction)? * 0.5),
+            Self::Logarithmic { map, point } => Some(map.ndc_derivative(*point, direction)? * 0.5),
+        }
+    }
+}
+
+/// What [`local`] reads of a camera, taken once per image: its eye and axes, and one pixel's
+/// step across and up per unit of depth.
+struct Viewer {
+    eye: DVec3,
+    forward: DVec3,
+    right: DVec3,
+    up: DVec3,
+    /// `2·tan(fov_x/2)/width`.
+    step_x: f64,
+    /// `2·tan(fov_y/2)/height`.
+    step_y: f64,
+}
+
+impl Viewer {
+    fn new(camera: &Camera) -> Self {
+        let tan_y = camera.projection.tan_half_fov_y();
+        let tan_x = tan_y * camera.projection.aspect();
+        Self {
+            eye: camera.pose.eye(),
+            forward: camera.pose.forward(),
+            right: camera.pose.right(),
+            up: camera.pose.up(),
+            step_x: 2.0 * tan_x / f64::from(camera.width),
+            step_y: 2.0 * tan_y / f64::from(camera.height),
         }
     }
 }
@@ -134,29 +187,28 @@ impl<'a> Prepared<'a> {
 fn local(
     mapping: &Prepared<'_>,
     resolution: u32,
-    camera: &Camera,
+    viewer: &Viewer,
     point: DVec3,
     normal: DVec3,
 ) -> Option<Local> {
     let n = normal.try_normalize()?;
-    let to_point = point - camera.pose.eye();
-    let depth = to_point.dot(camera.pose.forward());
+    let to_point = point - viewer.eye;
+    let depth = to_point.dot(viewer.forward);
     let facing = to_point.dot(n);
     if depth <= 0.0 || facing == 0.0 || !facing.is_finite() {
         return None;
     }
-    let tan_y = camera.projection.tan_half_fov_y();
-    let tan_x = tan_y * camera.projection.aspect();
     // One pixel's step of the eye ray at the point's depth, then onto the plane.
-    let across = camera.pose.right() * (2.0 * tan_x / f64::from(camera.width) * depth);
-    let up = camera.pose.up() * (2.0 * tan_y / f64::from(camera.height) * depth);
+    let across = viewer.right * (viewer.step_x * depth);
+    let up = viewer.up * (viewer.step_y * depth);
     let on_plane = |step: DVec3| step - to_point * (step.dot(n) / facing);
     let (t1, t2) = (on_plane(across), on_plane(up));
     let distance = to_point.length();
     let texels = f64::from(resolution);
-    let d1 = mapping.derivative(point, t1)? * texels;
-    let d2 = mapping.derivative(point, t2)? * texels;
-    let dn = mapping.derivative(point, n)? * texels;
+    let at = mapping.at(point)?;
+    let d1 = at.derivative(t1)? * texels;
+    let d2 = at.derivative(t2)? * texels;
+    let dn = at.derivative(n)? * texels;
     // The light's ray: c·(t1, t2, n) with Du·(t1, t2, n)·c = 0, c ⟂ both rows of Du there.
     let c = DVec3::new(d1.x, d2.x, dn.x).cross(DVec3::new(d1.y, d2.y, dn.y));
     let ray = t1 * c.x + t2 * c.y + n * c.z;
@@ -184,7 +236,7 @@ pub fn texel_jacobian(
     local(
         &Prepared::new(&setup.mapping),
         resolution,
-        camera,
+        &Viewer::new(camera),
         point,
         normal,
     )
@@ -206,7 +258,7 @@ pub fn footprint(
     let local = local(
         &Prepared::new(&setup.mapping),
         resolution,
-        camera,
+        &Viewer::new(camera),
         point,
         normal,
     )?;
@@ -258,6 +310,7 @@ pub fn footprints_served(
         .iter()
         .map(|&(setup, resolution)| (Prepared::new(&setup.mapping), resolution))
         .collect();
+    let viewer = Viewer::new(camera);
     eye.triangle
         .par_iter()
         .zip(&eye.position)
@@ -268,7 +321,7 @@ pub fn footprints_served(
                 return None;
             }
             let (mapping, resolution) = mappings.get(serving(pixel)?)?;
-            footprint_of(&local(mapping, *resolution, camera, point, normal)?)
+            footprint_of(&local(mapping, *resolution, &viewer, point, normal)?)
         })
         .collect()
 }
