@@ -344,7 +344,14 @@ pub struct AliasingStats {
 /// are sorted (`f64::total_cmp`) and summed in that order, so the result depends on the multiset
 /// of values only, not on their order. With no values, every field is 0.
 #[must_use]
-pub fn stats(values: impl Iterator<Item = f64>) -> AliasingStats {
+pub fn stats(values: impl Iterator<Item = f64> + Send) -> AliasingStats {
+    par_stats(values.par_bridge())
+}
+
+/// [`stats`] of values a parallel iterator yields, gathered and sorted in parallel: the same
+/// statistics, whatever order the values arrive in.
+#[must_use]
+pub fn par_stats(values: impl ParallelIterator<Item = f64>) -> AliasingStats {
     // Sorted as integers that order as `f64::total_cmp` orders the values (the key `total_cmp`
     // itself compares): a third faster than sorting by the comparison (400 000 values: 5.4 against
     // 8.0 ms), and a study sorts three sets per combination.

@@ -8,6 +8,7 @@
 //! `T` is the technique's label with `/` as `-` (`lispsm-minimax`). Both forms are deterministic:
 //! the annotated ones are drawn by `shadowlab-plot` with its embedded font around the raw pixels.
 
+use rayon::prelude::*;
 use shadowlab_plot::{Image, Picture, render_picture};
 use shadowlab_raster::image_out;
 use shadowlab_shadow::Technique;
@@ -151,27 +152,41 @@ pub fn annotated(
     })
 }
 
+/// A file of the output set: its path and its bytes.
+pub type File = (String, Vec<u8>);
+
 /// Every picture of the study, raw and annotated, each with its path in the output set (module
 /// docs), in technique order.
 ///
 /// # Errors
 /// [`AnalysisError::Raster`] or [`AnalysisError::Plot`] if a picture cannot be encoded.
-pub fn files(study: &Study) -> Result<Vec<(String, Vec<u8>)>, AnalysisError> {
+pub fn files(study: &Study) -> Result<Vec<File>, AnalysisError> {
+    // Each technique's pictures drawn and encoded in parallel, gathered in technique order; the
+    // first error in that order is the one returned.
+    let per_technique: Vec<Result<Vec<File>, AnalysisError>> = study
+        .pictures
+        .par_iter()
+        .map(|pictures| {
+            let technique = pictures.setting.technique;
+            let mut files = Vec::with_capacity(2 * PictureKind::ALL.len());
+            for kind in PictureKind::ALL {
+                files.push((
+                    kind.raw_path(technique),
+                    image_out::rgb_png(pixels(pictures, kind), study.width, study.height)?,
+                ));
+            }
+            for kind in PictureKind::ALL {
+                files.push((
+                    kind.annotated_path(technique),
+                    render_picture(&annotated(study, pictures, kind)?)?,
+                ));
+            }
+            Ok(files)
+        })
+        .collect();
     let mut files = Vec::new();
-    for pictures in &study.pictures {
-        let technique = pictures.setting.technique;
-        for kind in PictureKind::ALL {
-            files.push((
-                kind.raw_path(technique),
-                image_out::rgb_png(pixels(pictures, kind), study.width, study.height)?,
-            ));
-        }
-        for kind in PictureKind::ALL {
-            files.push((
-                kind.annotated_path(technique),
-                render_picture(&annotated(study, pictures, kind)?)?,
-            ));
-        }
+    for technique in per_technique {
+        files.extend(technique?);
     }
     Ok(files)
 }

@@ -3,6 +3,7 @@
 
 use std::time::{Duration, Instant};
 
+use rayon::prelude::*;
 use shadowlab_raster::{DepthFormat, EyeImage, NO_TRIANGLE};
 use shadowlab_scene::Scene;
 use shadowlab_shadow::optimal::OptimalOptions;
@@ -13,7 +14,7 @@ use shadowlab_shadow::{
 };
 use shadowlab_trace::Bvh;
 
-use crate::aliasing::{AliasingStats, Footprint, footprints_served, stats};
+use crate::aliasing::{AliasingStats, Footprint, footprints_served, par_stats};
 use crate::attribution::{Attribution, Causes, attribute, cause_image};
 use crate::classify::{Misclassification, difference_image, misclassification};
 use crate::error::AnalysisError;
@@ -383,7 +384,7 @@ pub(crate) fn outcome(
     (attribution, attribution_time): &(Attribution, Duration),
 ) -> Outcome {
     let start = Instant::now();
-    let part = |f: fn(&Footprint) -> f64| stats(per_pixel.iter().flatten().map(f));
+    let part = |f: fn(&Footprint) -> f64| par_stats(per_pixel.par_iter().flatten().map(f));
     // The three sets summarised side by side (each sort in parallel too): the same statistics.
     let (total, (perspective, projection)) = rayon::join(
         || part(|f| f.total),

@@ -271,7 +271,7 @@ pub fn plan_light(
             })?;
             let samples: Vec<DVec3> = image
                 .triangle
-                .iter()
+                .par_iter()
                 .zip(&image.position)
                 .filter(|(t, _)| **t != NO_TRIANGLE)
                 .map(|(_, p)| *p)

@@ -89,6 +89,7 @@
 //!   of the samples' order.
 
 use glam::{DMat4, DVec3, DVec4};
+use rayon::prelude::*;
 use shadowlab_hull::HullError;
 use shadowlab_params::{DepthRange, ParamError};
 
@@ -193,7 +194,8 @@ fn logarithmic(min: f64, max: f64, count: usize) -> Result<Vec<f64>, ShadowError
 /// the final centres, with the smallest and largest depth at the ends.
 fn kmeans(depths: &[f64], count: usize) -> Vec<f64> {
     let mut sorted = depths.to_vec();
-    sorted.sort_by(f64::total_cmp);
+    // One order under `total_cmp`, so a parallel sort gives the same.
+    sorted.par_sort_by(f64::total_cmp);
     let n = sorted.len();
     // The equal-count quantiles (i + 1)/(k + 1): the first sorted index whose inclusive count
     // exceeds that share of n, as the sample's WeightUpperBound finds it on its prefix sums.
@@ -285,8 +287,9 @@ pub fn plan(
     let frame = LightFrame::new(&input.eye, &input.light, KEY)?;
     let to_light = frame.world_to_light();
     let (e, v) = (input.eye.pose.eye(), input.eye.pose.forward());
+    // In parallel, in the samples' order.
     let samples: Vec<Sample> = samples
-        .iter()
+        .par_iter()
         .filter(|p| in_cone(&input.light, **p))
         .map(|&world| {
             Ok(Sample {
