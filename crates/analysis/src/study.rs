@@ -384,7 +384,10 @@ pub(crate) fn outcome(
     (attribution, attribution_time): &(Attribution, Duration),
 ) -> Outcome {
     let start = Instant::now();
-    let part = |f: fn(&Footprint) -> f64| par_stats(per_pixel.par_iter().flatten().map(f));
+    // filter_map, not flatten: rayon's flatten makes a parallel iterator of every Option.
+    let part = |f: fn(&Footprint) -> f64| {
+        par_stats(per_pixel.par_iter().filter_map(|p| p.as_ref().map(f)))
+    };
     // The three sets summarised side by side (each sort in parallel too): the same statistics.
     let (total, (perspective, projection)) = rayon::join(
         || part(|f| f.total),
