@@ -83,9 +83,9 @@ use shadowlab_shadow::{
 };
 use shadowlab_trace::{Bvh, Ray};
 
-use crate::classify::{BACKGROUND, CORRECT_LIT, CORRECT_SHADOW, LIT_THRESHOLD};
+use crate::classify::{BACKGROUND, CORRECT_LIT, CORRECT_SHADOW};
 use crate::error::AnalysisError;
-use crate::truth::Truth;
+use crate::truth::{LIT_THRESHOLD, Truth};
 
 /// Rows of pixels attributed per parallel job; any size gives the same result.
 pub const ATTRIBUTION_ROWS: usize = 8;

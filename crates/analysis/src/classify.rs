@@ -14,10 +14,7 @@ use std::ops::AddAssign;
 
 use shadowlab_raster::{EyeImage, NO_TRIANGLE};
 
-use crate::truth::Truth;
-
-/// A lit fraction at least this counts as lit.
-pub const LIT_THRESHOLD: f64 = 0.5;
+use crate::truth::{LIT_THRESHOLD, Truth};
 
 /// How many judged (light, pixel) pairs a technique got wrong, and how.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -176,4 +173,34 @@ fn check_shapes(truth: &Truth, lit: &[Vec<f64>]) {
             t.len()
         );
     }
+}
+
+/// How far truth `b` is from truth `a`, counted as [`misclassification`] counts a
+/// technique against the truth: `falsely_lit` where `b` lights what `a` shadows,
+/// `falsely_shadowed` the reverse, `visible` the (light, pixel) pairs where both see a surface
+/// and neither marks the point outside the light's cone.
+///
+/// # Panics
+/// If the two have different numbers of lights or pixels (they must describe the same eye image).
+#[must_use]
+pub fn disagreement(a: &Truth, b: &Truth) -> Misclassification {
+    assert_eq!(
+        a.lit.len(),
+        b.lit.len(),
+        "disagreement: the truths have different numbers of lights"
+    );
+    let mut total = Misclassification::default();
+    for (light, (reference, other)) in a.lit.iter().zip(&b.lit).enumerate() {
+        assert_eq!(
+            reference.len(),
+            other.len(),
+            "disagreement: the truths of light {light} have different numbers of pixels"
+        );
+        let judged = |pixel: usize| match other[pixel] {
+            Some(lit) if !b.outside_cone[light][pixel] => Some(lit),
+            _ => None,
+        };
+        total += compare(reference, &a.outside_cone[light], judged);
+    }
+    total
 }

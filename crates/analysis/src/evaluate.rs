@@ -26,12 +26,12 @@ use shadowlab_shadow::{
 };
 
 use crate::aliasing::Footprint;
-use crate::classify::LIT_THRESHOLD;
 use crate::setup_file::{
     DEPTH_IMAGE_SLACK_BYTES, DepthImage, ImageKind, Setup, SetupError, SetupPartition, read_bounded,
 };
 use crate::study::{Measurement, Pictures, Setting, Study, attributed, footprinted, outcome};
 use crate::temporal::{Stability, shimmer};
+use crate::truth::LIT_THRESHOLD;
 use crate::truth::{exact_truth, scene_bvh};
 
 /// Evaluates `setup` on `scene`, calling `frame_done(k, study)` as each frame `k` is measured:

@@ -30,8 +30,8 @@ use shadowlab_raster::{EyeImage, NO_TRIANGLE};
 use shadowlab_shadow::LightShadow;
 
 use crate::aliasing::Footprint;
-use crate::classify::LIT_THRESHOLD;
 use crate::error::AnalysisError;
+use crate::truth::LIT_THRESHOLD;
 use crate::truth::Truth;
 
 /// Truth code: the visible point is in shadow.

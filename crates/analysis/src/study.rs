@@ -16,10 +16,10 @@ use shadowlab_trace::Bvh;
 
 use crate::aliasing::{AliasingStats, Footprint, footprints_served, par_stats};
 use crate::attribution::{Attribution, Causes, attribute, cause_image};
-use crate::classify::{Misclassification, difference_image, misclassification};
+use crate::classify::{Misclassification, difference_image, disagreement, misclassification};
 use crate::error::AnalysisError;
 use crate::images::{HeatScale, heatmap, value_range};
-use crate::truth::{Truth, disagreement, exact_truth, map_truth, scene_bvh};
+use crate::truth::{Truth, exact_truth, map_truth, scene_bvh};
 use crate::view_axis::{AxisCurve, curves};
 
 /// Side of the uniform shadow map used as the alternative truth (Chong and Gortler used 3700²).

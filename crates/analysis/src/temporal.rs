@@ -19,8 +19,8 @@ use shadowlab_shadow::{
 };
 use shadowlab_trace::Bvh;
 
-use crate::classify::LIT_THRESHOLD;
 use crate::error::AnalysisError;
+use crate::truth::LIT_THRESHOLD;
 use crate::truth::exact_truth;
 
 /// How far the camera walks per frame, as a fraction of the scene's bounding radius.

@@ -41,8 +41,11 @@ use shadowlab_shadow::{
 };
 use shadowlab_trace::{Bvh, Hit, Ray, offset_origin};
 
-use crate::classify::{LIT_THRESHOLD, Misclassification, compare};
 use crate::error::AnalysisError;
+
+/// A lit fraction at least this counts as lit: for a technique's lookups ([`crate::classify`]) and
+/// for the map truth's ([`map_truth`]).
+pub const LIT_THRESHOLD: f64 = 0.5;
 
 /// Which visible points each light lights.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -268,7 +271,7 @@ pub const MAP_TRUTH_SLOPE_BIAS: f64 = 1.0;
 /// [`LIT_THRESHOLD`]. Points outside a spot's cone are unlit and marked, as in [`exact_truth`].
 ///
 /// It is an approximation that converges to the exact truth away from shadow edges as the
-/// resolution grows; [`disagreement`] measures how far the two are apart. Memory grows with
+/// resolution grows; [`crate::classify::disagreement`] measures how far the two are apart. Memory grows with
 /// `resolution²`: about 12.5 bytes per texel while rendering, 8 for the map kept during lookups.
 ///
 /// # Errors
@@ -327,34 +330,4 @@ pub fn map_truth(scene: &Scene, eye: &EyeImage, resolution: u32) -> Result<Truth
         truth.outside_cone.push(outside_cone);
     }
     Ok(truth)
-}
-
-/// How far truth `b` is from truth `a`, counted as [`crate::classify::misclassification`] counts a
-/// technique against the truth: `falsely_lit` where `b` lights what `a` shadows,
-/// `falsely_shadowed` the reverse, `visible` the (light, pixel) pairs where both see a surface
-/// and neither marks the point outside the light's cone.
-///
-/// # Panics
-/// If the two have different numbers of lights or pixels (they must describe the same eye image).
-#[must_use]
-pub fn disagreement(a: &Truth, b: &Truth) -> Misclassification {
-    assert_eq!(
-        a.lit.len(),
-        b.lit.len(),
-        "disagreement: the truths have different numbers of lights"
-    );
-    let mut total = Misclassification::default();
-    for (light, (reference, other)) in a.lit.iter().zip(&b.lit).enumerate() {
-        assert_eq!(
-            reference.len(),
-            other.len(),
-            "disagreement: the truths of light {light} have different numbers of pixels"
-        );
-        let judged = |pixel: usize| match other[pixel] {
-            Some(lit) if !b.outside_cone[light][pixel] => Some(lit),
-            _ => None,
-        };
-        total += compare(reference, &a.outside_cone[light], judged);
-    }
-    total
 }

@@ -3,7 +3,8 @@
 
 use glam::DVec3;
 use shadowlab_analysis::AnalysisError;
-use shadowlab_analysis::truth::{Truth, disagreement, exact_truth, map_truth, scene_bvh};
+use shadowlab_analysis::classify::disagreement;
+use shadowlab_analysis::truth::{Truth, exact_truth, map_truth, scene_bvh};
 use shadowlab_hull::{Perspective, ViewPose};
 use shadowlab_raster::{DepthFormat, NO_TRIANGLE, Triangles};
 use shadowlab_scene::{Mesh, SceneLight, procedural};
