@@ -558,6 +558,7 @@ pub fn cause_image(attribution: &Attribution, truth: &Truth, eye: &EyeImage) -> 
         "cause_image: the attribution and the truth have different numbers of lights"
     );
     (0..eye.triangle.len())
+        .into_par_iter()
         .map(|pixel| {
             if eye.triangle[pixel] == NO_TRIANGLE {
                 return BACKGROUND;

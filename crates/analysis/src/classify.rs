@@ -12,6 +12,7 @@
 
 use std::ops::AddAssign;
 
+use rayon::prelude::*;
 use shadowlab_raster::{EyeImage, NO_TRIANGLE};
 
 use crate::truth::{LIT_THRESHOLD, Truth};
@@ -128,6 +129,7 @@ pub fn difference_image(truth: &Truth, lit: &[Vec<f64>], eye: &EyeImage) -> Vec<
         "difference_image: the eye image's triangles do not fill width × height"
     );
     (0..eye.triangle.len())
+        .into_par_iter()
         .map(|pixel| {
             if eye.triangle[pixel] == NO_TRIANGLE {
                 return BACKGROUND;

@@ -19,6 +19,7 @@
 //! `2/3`, the control point `#35B779` (green). Pixels without a value (nothing visible, or the
 //! value undefined or NaN) are [`NO_VALUE`].
 
+use rayon::prelude::*;
 use shadowlab_plot::{Color, ColourBar, Scale, Swatch};
 
 use crate::attribution::{Cause, Causes};
@@ -141,7 +142,7 @@ pub fn heatmap(values: &[Option<f64>], width: u32, height: u32, scale: HeatScale
         values.len()
     );
     values
-        .iter()
+        .par_iter()
         .map(|v| v.and_then(|v| scale.fraction(v)).map_or(NO_VALUE, colour))
         .collect()
 }

@@ -5,6 +5,7 @@
 //! settings, the light view with the legend of its colours; drawn by `shadowlab-plot`).
 
 use glam::{DVec2, DVec3};
+use rayon::prelude::*;
 use shadowlab_hull::{ConvexHull2, convex_hull_2d};
 use shadowlab_plot::{Color as PlotColor, Image, Picture, PlotError, Swatch, render_picture};
 use shadowlab_raster::{EyeImage, NO_TRIANGLE};
@@ -60,7 +61,9 @@ pub fn shade_eye(
     let eye = scene.camera.pose.eye();
     let groups = scene.mesh.groups();
     let direct = DIRECT / lights.len().max(1) as f64;
+    // In parallel, in pixel order.
     (0..image.triangle.len())
+        .into_par_iter()
         .map(|pixel| {
             let triangle = image.triangle[pixel];
             if triangle == NO_TRIANGLE {
