@@ -67,7 +67,7 @@
 //! # The picture
 //! [`cause_image`] colours each pixel by the first cause (in the order above) of any light's
 //! misclassified pair: [`ACNE`], [`PETER_PANNING`], [`SEAM_BAND`], [`SEAM_BOUNDARY`],
-//! [`ALIASING`] — Okabe and Ito's reddish purple, orange, sky blue, blue and bluish green, none of
+//! [`ALIASING`] — Okabe and Ito's reddish purple, orange, sky blue, yellow and bluish green, none of
 //! them the difference image's two error colours — and correct pixels and the background as [`crate::classify::difference_image`]
 //! does.
 
@@ -172,8 +172,9 @@ pub const ACNE: [u8; 3] = [204, 121, 167];
 pub const PETER_PANNING: [u8; 3] = [230, 159, 0];
 /// A pixel whose first cause is a blend band's seam: Okabe and Ito's sky blue.
 pub const SEAM_BAND: [u8; 3] = [86, 180, 233];
-/// A pixel whose first cause is a partition boundary's seam: Okabe and Ito's blue.
-pub const SEAM_BOUNDARY: [u8; 3] = [0, 114, 178];
+/// A pixel whose first cause is a partition boundary's seam: Okabe and Ito's yellow (their blue is
+/// the difference image's falsely shadowed).
+pub const SEAM_BOUNDARY: [u8; 3] = [240, 228, 66];
 /// A pixel whose first cause is aliasing: Okabe and Ito's bluish green.
 pub const ALIASING: [u8; 3] = [0, 158, 115];
 

@@ -156,3 +156,23 @@ fn the_difference_classes_are_counted() {
     let [r, g, b] = FALSELY_LIT;
     assert_eq!(legend[0].color, shadowlab_plot::Color(r, g, b));
 }
+
+/// Claim: the causes picture's colours are five distinct colours, none of them the difference
+/// image's error colours or its greys and black, so the two pictures cannot be confused.
+#[test]
+fn the_causes_colours_are_their_own() {
+    use shadowlab_analysis::attribution::Cause;
+    let causes: Vec<[u8; 3]> = Cause::ALL.iter().map(|c| c.colour()).collect();
+    for (k, colour) in causes.iter().enumerate() {
+        assert!(!causes[..k].contains(colour), "{colour:?} repeated");
+        for taken in [
+            FALSELY_LIT,
+            FALSELY_SHADOWED,
+            CORRECT_LIT,
+            CORRECT_SHADOW,
+            BACKGROUND,
+        ] {
+            assert_ne!(*colour, taken, "{:?}", Cause::ALL[k]);
+        }
+    }
+}
