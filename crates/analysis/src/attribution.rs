@@ -222,6 +222,15 @@ impl Causes {
         self.seam_band + self.seam_boundary
     }
 
+    /// The pairs of each cause in precedence order ([`Cause::ALL`]), joined by `separator`: a
+    /// table's cells.
+    #[must_use]
+    pub fn joined(&self, separator: &str) -> String {
+        Cause::ALL
+            .map(|cause| self.of(cause).to_string())
+            .join(separator)
+    }
+
     /// Every cause's pairs: the misclassified pairs.
     #[must_use]
     pub fn total(&self) -> u64 {

@@ -10,7 +10,7 @@ use std::fmt::Write as _;
 use shadowlab_scene::Scene;
 use shadowlab_shadow::{Bias, Technique};
 
-use crate::attribution::{Cause, Causes};
+use crate::attribution::Causes;
 use crate::classify::Misclassification;
 use crate::error::AnalysisError;
 use crate::report::{csv_field, filter_label, technique_label};
@@ -126,11 +126,6 @@ pub fn on_front(points: &[BiasPoint]) -> Vec<bool> {
         .collect()
 }
 
-/// A combination's pairs per cause, in precedence order.
-fn cause_counts(causes: &Causes) -> [String; Cause::ALL.len()] {
-    Cause::ALL.map(|cause| causes.of(cause).to_string())
-}
-
 /// The sweep written out: `bias-sweep.csv` (every point, with `pareto` true on the front) and
 /// `bias-sweep.md` (per combination: a row per bias, the front marked, the best bias named).
 #[must_use]
@@ -164,7 +159,7 @@ pub fn write(scene: &str, points: &[BiasPoint]) -> Vec<(String, Vec<u8>)> {
                 csv,
                 "{head},true,{},{},{},{on}",
                 e.total(),
-                cause_counts(c).join(","),
+                c.joined(","),
                 c.seam()
             ),
             Err(_) => writeln!(csv, "{head},false,,,,,,,,false"),
@@ -203,7 +198,7 @@ pub fn write(scene: &str, points: &[BiasPoint]) -> Vec<(String, Vec<u8>)> {
                         md,
                         "| {bias} | {} | {} | {} |",
                         e.total(),
-                        cause_counts(c).join(" | "),
+                        c.joined(" | "),
                         if on { "★" } else { "" }
                     )
                 }

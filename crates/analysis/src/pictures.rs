@@ -152,41 +152,44 @@ pub fn annotated(
     })
 }
 
-/// A file of the output set: its path and its bytes.
-pub type File = (String, Vec<u8>);
-
 /// Every picture of the study, raw and annotated, each with its path in the output set (module
 /// docs), in technique order.
 ///
 /// # Errors
 /// [`AnalysisError::Raster`] or [`AnalysisError::Plot`] if a picture cannot be encoded.
-pub fn files(study: &Study) -> Result<Vec<File>, AnalysisError> {
+pub fn files(study: &Study) -> Result<Vec<(String, Vec<u8>)>, AnalysisError> {
     // Each technique's pictures drawn and encoded in parallel, gathered in technique order; the
     // first error in that order is the one returned.
-    let per_technique: Vec<Result<Vec<File>, AnalysisError>> = study
+    let per_technique: Vec<_> = study
         .pictures
         .par_iter()
-        .map(|pictures| {
-            let technique = pictures.setting.technique;
-            let mut files = Vec::with_capacity(2 * PictureKind::ALL.len());
-            for kind in PictureKind::ALL {
-                files.push((
-                    kind.raw_path(technique),
-                    image_out::rgb_png(pixels(pictures, kind), study.width, study.height)?,
-                ));
-            }
-            for kind in PictureKind::ALL {
-                files.push((
-                    kind.annotated_path(technique),
-                    render_picture(&annotated(study, pictures, kind)?)?,
-                ));
-            }
-            Ok(files)
-        })
+        .map(|pictures| technique_files(study, pictures))
         .collect();
     let mut files = Vec::new();
     for technique in per_technique {
         files.extend(technique?);
+    }
+    Ok(files)
+}
+
+/// One technique's pictures, raw then annotated, each with its path.
+fn technique_files(
+    study: &Study,
+    pictures: &Pictures,
+) -> Result<Vec<(String, Vec<u8>)>, AnalysisError> {
+    let technique = pictures.setting.technique;
+    let mut files = Vec::with_capacity(2 * PictureKind::ALL.len());
+    for kind in PictureKind::ALL {
+        files.push((
+            kind.raw_path(technique),
+            image_out::rgb_png(pixels(pictures, kind), study.width, study.height)?,
+        ));
+    }
+    for kind in PictureKind::ALL {
+        files.push((
+            kind.annotated_path(technique),
+            render_picture(&annotated(study, pictures, kind)?)?,
+        ));
     }
     Ok(files)
 }

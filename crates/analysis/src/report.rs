@@ -13,7 +13,6 @@ use shadowlab_plot::{Axis, Figure, LegendPosition, LineStyle, Panel, Series};
 use shadowlab_shadow::{Filter, StepDirection, Technique};
 
 use crate::aliasing::AliasingStats;
-use crate::attribution::Cause;
 use crate::document::{self, Align, Block, Table, code, paragraph, text};
 use crate::error::AnalysisError;
 use crate::study::{Measurement, Outcome, Study};
@@ -257,11 +256,7 @@ fn document(study: &Study) -> Vec<Block> {
             &mut doc,
             "Misclassified pixels by cause: acne / peter-panning / seam in a band / seam at a \
              boundary / aliasing",
-            &|o| {
-                Cause::ALL
-                    .map(|cause| o.causes.of(cause).to_string())
-                    .join(" / ")
-            },
+            &|o| o.causes.joined(" / "),
         );
         table(
             &mut doc,
@@ -513,7 +508,7 @@ fn csv(study: &Study) -> Result<String, AnalysisError> {
                     o.errors.falsely_lit,
                     o.errors.falsely_shadowed
                 ));
-                fields.extend(Cause::ALL.map(|cause| o.causes.of(cause).to_string()));
+                fields.push(o.causes.joined(","));
                 fields.push(o.causes.seam().to_string());
                 for part in &o.footprint {
                     fields.extend(stats_columns(part).iter().map(|v| format!("{v:?}")));
