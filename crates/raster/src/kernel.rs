@@ -21,7 +21,7 @@ use std::ops::RangeInclusive;
 use wide::i32x8;
 
 use crate::fixed::SUBPIXEL_BITS;
-use crate::target::TILE_STRIDE;
+use crate::tile::{TILE_STRIDE, TileRect};
 use crate::triangle::{DepthPlane, Edge, PixelBox, edges};
 use crate::vertex::WindowVertex;
 
@@ -58,15 +58,6 @@ pub(crate) trait TileKernel: Sync {
 
     /// A measure of the work in tiles `first..first + count`: what the scheduler orders groups by.
     fn cost(&self, first: usize, count: usize) -> u64;
-}
-
-/// The pixel rectangle of a tile: first column and row, and size.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) struct TileRect {
-    pub(crate) x0: i64,
-    pub(crate) y0: i64,
-    pub(crate) width: i64,
-    pub(crate) height: i64,
 }
 
 /// Block side, in pixels: the lanes of one row.

@@ -45,6 +45,7 @@
 //! # Ok::<(), shadowlab_raster::RasterError>(())
 //! ```
 
+mod bin;
 mod clip;
 mod depth;
 mod error;
@@ -54,9 +55,13 @@ pub mod image_in;
 pub mod image_out;
 mod kernel;
 mod pipeline;
+mod schedule;
+mod sink;
+mod stats;
 mod target;
 #[cfg(test)]
 mod test_random;
+mod tile;
 mod triangle;
 mod vertex;
 
@@ -64,6 +69,8 @@ pub use depth::{DepthCompare, DepthFormat};
 pub use error::RasterError;
 pub use eye::EyeImage;
 pub use fixed::{GUARD_BAND, MAX_TARGET_SIZE, SUBPIXEL_BITS};
-pub use pipeline::{DrawStats, Fragment, RasterOptions, Rasterizer, Triangles};
-pub use target::{DepthPairTarget, DepthTarget, EyeTarget, NO_TRIANGLE, TargetSize};
+pub use pipeline::{Fragment, RasterOptions, Rasterizer, Triangles};
+pub use stats::DrawStats;
+pub use target::{DepthPairTarget, DepthTarget, EyeTarget, NO_TRIANGLE};
+pub use tile::TargetSize;
 pub use triangle::CullMode;
