@@ -52,6 +52,7 @@ pub mod classify;
 mod document;
 mod error;
 pub mod evaluate;
+mod exact_sum;
 pub mod export;
 mod html;
 pub mod images;

@@ -328,8 +328,8 @@ proptest! {
 }
 
 /// Claim: the statistics are exact on known values — maximum, nearest-rank 99th percentile
-/// (the ⌈0.99·n⌉-th smallest), mean — leave NaN out, do not depend on the order of the values, and
-/// are all 0 for no values.
+/// (the ⌈0.99·n⌉-th smallest), mean (the exact sum rounded once, over the count) — leave NaN out,
+/// do not depend on the order of the values, and are all 0 for no values.
 #[test]
 fn statistics_have_the_documented_values() {
     let values: Vec<f64> = (1..=100).map(f64::from).collect();
@@ -347,6 +347,9 @@ fn statistics_have_the_documented_values() {
     let forward = stats(tenths.iter().copied());
     let backward = stats(tenths.iter().rev().copied());
     assert_eq!(forward.mean.to_bits(), backward.mean.to_bits());
+    // The sum is exact: a sorted sum of these loses the ones against 1e16 (mean 0, not 0.5).
+    let s = stats([-1e16, 1.0, 1.0, 1e16].into_iter());
+    assert_eq!(s.mean, 0.5);
     // Negative values, both zeros and infinities sort as `f64::total_cmp` sorts them.
     let mixed = [
         3.0,
