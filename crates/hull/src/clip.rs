@@ -23,8 +23,9 @@ use glam::DVec3;
 use crate::aabb::Aabb;
 use crate::frustum::Frustum;
 use crate::hull3;
+use crate::mesh::Face;
 use crate::plane::Plane;
-use crate::polyhedron::{ConvexPolyhedron, Face};
+use crate::polyhedron::ConvexPolyhedron;
 use crate::tolerance::Tolerances;
 
 #[derive(Clone, Copy, PartialEq, Eq)]

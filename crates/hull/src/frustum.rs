@@ -217,7 +217,7 @@ impl Frustum {
             if !plane.normal().is_finite() || !plane.offset().is_finite() {
                 return Err(ValidationError::NonFinite);
             }
-            if (plane.normal().length() - 1.0).abs() > crate::polyhedron::UNIT_LENGTH_TOLERANCE {
+            if (plane.normal().length() - 1.0).abs() > crate::tolerance::UNIT_LENGTH_TOLERANCE {
                 return Err(ValidationError::NonUnitNormal { face });
             }
             for (vertex, corner) in self.corners.iter().enumerate() {

@@ -26,8 +26,9 @@ use robust::{Coord3D, orient3d};
 use crate::area::loop_normal;
 use crate::error::{Degeneracy, HullError};
 use crate::finite::{flush_tiny, rescale_for};
+use crate::mesh::Face;
 use crate::plane::Plane;
-use crate::polyhedron::{ConvexPolyhedron, Face};
+use crate::polyhedron::ConvexPolyhedron;
 use crate::tolerance::{Scale, Tolerances, distance};
 
 impl ConvexPolyhedron {

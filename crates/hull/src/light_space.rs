@@ -7,7 +7,7 @@ use glam::{DAffine3, DMat3, DVec3};
 use crate::camera::ViewPose;
 use crate::error::{HullError, ValidationError};
 use crate::finite::unit_vec;
-use crate::polyhedron::UNIT_LENGTH_TOLERANCE;
+use crate::tolerance::UNIT_LENGTH_TOLERANCE;
 
 /// The length of the blended axis `d` below which it is treated as the singular configuration
 /// (see [`LightSpace`]) and replaced by `y × r`. `d` has length ≥ 0.38 except within this

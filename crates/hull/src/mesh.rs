@@ -1,10 +1,38 @@
-//! Mesh bookkeeping shared by the polyhedron builders: merging close vertices, finding close pairs,
-//! and the topological checks (closed, oriented 2-manifold, single fans, Euler characteristic).
+//! Mesh bookkeeping shared by the polyhedron builders: faces, merging close vertices, finding close
+//! pairs, and the topological checks (closed, oriented 2-manifold, single fans, Euler
+//! characteristic).
 
 use glam::DVec3;
 
 use crate::error::ValidationError;
-use crate::polyhedron::Face;
+use crate::plane::Plane;
+
+/// One face: an outward plane and the loop of vertex indices on it, counter-clockwise seen from
+/// outside (i.e. around the plane's normal).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Face {
+    pub(crate) plane: Plane,
+    pub(crate) vertices: Vec<usize>,
+}
+
+impl Face {
+    pub(crate) fn new(plane: Plane, vertices: Vec<usize>) -> Self {
+        Self { plane, vertices }
+    }
+
+    /// The outward plane.
+    #[must_use]
+    pub fn plane(&self) -> &Plane {
+        &self.plane
+    }
+
+    /// The vertex loop (indices into [`crate::ConvexPolyhedron::vertices`]), counter-clockwise seen from
+    /// outside.
+    #[must_use]
+    pub fn vertices(&self) -> &[usize] {
+        &self.vertices
+    }
+}
 
 /// Vertex indices sorted by x (ties by index), for sweep-line proximity searches.
 fn sorted_by_x(points: &[DVec3]) -> Vec<usize> {

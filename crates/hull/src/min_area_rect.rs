@@ -15,8 +15,8 @@ use glam::DVec2;
 
 use crate::error::{HullError, ValidationError};
 use crate::hull2::{ConvexHull2, ConvexPolygon2, convex_hull_2d, validation_distance_2d};
-use crate::polyhedron::UNIT_LENGTH_TOLERANCE;
 use crate::tolerance::Tolerances;
+use crate::tolerance::UNIT_LENGTH_TOLERANCE;
 
 /// A rectangle given by its centre, two orthonormal axes and half-extents along them.
 ///

@@ -11,14 +11,10 @@ use crate::aabb::Aabb;
 use crate::error::{Degeneracy, HullError, ValidationError};
 use crate::finite::{flush_tiny, rescale_for};
 use crate::frustum::{FACE_CORNERS, Frustum};
-use crate::mesh;
+use crate::mesh::{self, Face};
 use crate::plane::Plane;
 use crate::ray::Ray;
-use crate::tolerance::{Scale, Tolerances};
-
-/// How far from 1 the length of a stored unit normal may be. Normals are normalised in f64, so their
-/// length is 1 within a few ulps; this bound is only a sanity check in `validate()`.
-pub const UNIT_LENGTH_TOLERANCE: f64 = 1e-12;
+use crate::tolerance::{Scale, Tolerances, UNIT_LENGTH_TOLERANCE};
 
 /// A body's volume and centroid, computed in coordinates multiplied by `factor`, the power of two
 /// that brings the largest to about 1 (exact: no orientation changes, and nothing overflows or
@@ -42,33 +38,6 @@ impl Moments {
     /// The volume in world units (0 or ∞ where it underflows or overflows f64).
     fn volume(&self) -> f64 {
         self.scaled_six_volume / 6.0 / self.factor / self.factor / self.factor
-    }
-}
-
-/// One face: an outward plane and the loop of vertex indices on it, counter-clockwise seen from
-/// outside (i.e. around the plane's normal).
-#[derive(Clone, Debug, PartialEq)]
-pub struct Face {
-    plane: Plane,
-    vertices: Vec<usize>,
-}
-
-impl Face {
-    pub(crate) fn new(plane: Plane, vertices: Vec<usize>) -> Self {
-        Self { plane, vertices }
-    }
-
-    /// The outward plane.
-    #[must_use]
-    pub fn plane(&self) -> &Plane {
-        &self.plane
-    }
-
-    /// The vertex loop (indices into [`ConvexPolyhedron::vertices`]), counter-clockwise seen from
-    /// outside.
-    #[must_use]
-    pub fn vertices(&self) -> &[usize] {
-        &self.vertices
     }
 }
 

@@ -13,6 +13,10 @@
 
 use glam::DVec3;
 
+/// How far from 1 the length of a stored unit normal may be. Normals are normalised in f64, so their
+/// length is 1 within a few ulps; this bound is only a sanity check in `validate()`.
+pub const UNIT_LENGTH_TOLERANCE: f64 = 1e-12;
+
 /// The size of some data: what tolerances are scaled to.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Scale {
