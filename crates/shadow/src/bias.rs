@@ -549,17 +549,20 @@ pub(crate) struct Comparison {
 }
 
 impl Comparison {
-    /// `comparison` for the receiver at `world` with `normal`.
+    /// `comparison` for the receiver at `world` with `normal`, whose window position through
+    /// `map` is `window` (`map.setup.mapping.window(world)`, which the caller has at hand).
     pub(crate) fn new(
         comparison: DepthComparison,
         map: &ShadowMap,
-        world: DVec3,
+        (world, window): (DVec3, DVec3),
         normal: DVec3,
     ) -> Self {
         let (slope, gradient) = match comparison {
-            DepthComparison::SlopeScaled { .. } => (depth_slope(map, world, normal), DVec2::ZERO),
+            DepthComparison::SlopeScaled { .. } => {
+                (depth_slope(map, (world, window), normal), DVec2::ZERO)
+            }
             DepthComparison::ReceiverPlane { .. } => {
-                let gradient = depth_gradient(map, world, normal)
+                let gradient = depth_gradient(map, (world, window), normal)
                     .filter(|g| g.is_finite())
                     .map_or(DVec2::ZERO, |g| {
                         g.clamp(DVec2::splat(-MAX_SLOPE), DVec2::splat(MAX_SLOPE))
@@ -624,27 +627,31 @@ fn table_1(bias: DepthBias, z1: f64, z2: f64) -> f64 {
 /// The receiver's window-depth slope per texel: the larger of `|∂z/∂x|`, `|∂z/∂y|` of
 /// [`depth_gradient`], capped at [`MAX_SLOPE`] (which is also the slope where the gradient is
 /// undefined).
-fn depth_slope(map: &ShadowMap, world: DVec3, normal: DVec3) -> f64 {
-    depth_gradient(map, world, normal).map_or(MAX_SLOPE, |gradient| {
+fn depth_slope(map: &ShadowMap, at: (DVec3, DVec3), normal: DVec3) -> f64 {
+    depth_gradient(map, at, normal).map_or(MAX_SLOPE, |gradient| {
         gradient.x.abs().max(gradient.y.abs()).min(MAX_SLOPE)
     })
 }
 
-/// The window-depth gradient per texel `(∂z/∂x, ∂z/∂y)` of the surface plane through `world` with
-/// `normal`, seen through the map: two steps along the plane, and the inverse of their Jacobian
-/// in texels. `None` where the plane is seen edge-on (the Jacobian is singular) or a step lies
-/// behind the map's projection centre.
-fn depth_gradient(map: &ShadowMap, world: DVec3, normal: DVec3) -> Option<DVec2> {
+/// The window-depth gradient per texel `(∂z/∂x, ∂z/∂y)` of the surface plane through `world`
+/// (whose window position is `window`) with `normal`, seen through the map: two steps along the
+/// plane, and the inverse of their Jacobian in texels. `None` where the plane is seen edge-on (the
+/// Jacobian is singular) or a step lies behind the map's projection centre.
+fn depth_gradient(
+    map: &ShadowMap,
+    (world, window): (DVec3, DVec3),
+    normal: DVec3,
+) -> Option<DVec2> {
     let (t1, t2) = normal.any_orthonormal_pair();
     let step = SLOPE_STEP * world.length().max(1.0);
     let side = f64::from(map.resolution);
-    let at = |p: DVec3| {
-        map.setup
-            .mapping
-            .window(p)
-            .map(|w| DVec3::new(w.x * side, w.y * side, w.z))
-    };
-    let (p0, p1, p2) = (at(world)?, at(world + t1 * step)?, at(world + t2 * step)?);
+    let in_texels = |w: DVec3| DVec3::new(w.x * side, w.y * side, w.z);
+    let at = |p: DVec3| map.setup.mapping.window(p).map(in_texels);
+    let (p0, p1, p2) = (
+        in_texels(window),
+        at(world + t1 * step)?,
+        at(world + t2 * step)?,
+    );
     let (d1, d2) = (p1 - p0, p2 - p0);
     let jacobian = DMat2::from_cols(DVec2::new(d1.x, d1.y), DVec2::new(d2.x, d2.y));
     let determinant = jacobian.determinant();

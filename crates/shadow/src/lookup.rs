@@ -86,7 +86,7 @@ impl Lookup {
         if let Filter::Vsm { size, min_variance } = self.filter {
             return vsm(map, centre, receiver, size, min_variance);
         }
-        let comparison = Comparison::new(self.bias.comparison, map, world, normal);
+        let comparison = Comparison::new(self.bias.comparison, map, (world, window), normal);
         let test = |offset: DVec2, nearest: bool| {
             let Some(texel) = texel(map, centre + offset) else {
                 return 1.0;
