@@ -110,6 +110,9 @@ const KEY: &str = "sdsm";
 /// their magnitude) and far below any texel of a map up to 10⁸ texels wide.
 pub const FLAT_FRACTION: f64 = 1e-9;
 
+/// Samples per parallel work item of the window fit's bounds (see `bounds`): the split depends on
+/// this constant only, never on the thread count.
+const FIT_CHUNK: usize = 8192;
 /// How many times a window's side may be moved out for rounding ([half-open
 /// window](#half-open-window)); the extra move, `2^pass` ulps of the side's magnitude, doubles each
 /// pass, so that 64 passes cover any rounding of a finite mapping.
@@ -548,10 +551,7 @@ impl Window {
 /// light, flat axes widened, then moved out where rounding puts a sample outside
 /// ([half-open window](#half-open-window)).
 fn fit(to_light: &DMat4, samples: &[Sample], reach: f64) -> Result<Window, ShadowError> {
-    let (mut lo, mut hi) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
-    for sample in samples {
-        (lo, hi) = (lo.min(sample.light), hi.max(sample.light));
-    }
+    let (lo, mut hi) = bounds(samples, |sample| Some(sample.light))?;
     hi.y = hi.y.max(reach);
     let mut window = Window { lo, hi }.unflattened()?;
     for pass in 0..ROUNDING_PASSES {
@@ -559,13 +559,7 @@ fn fit(to_light: &DMat4, samples: &[Sample], reach: f64) -> Result<Window, Shado
             view: *to_light,
             projection: window.projection(),
         };
-        let (mut low, mut high) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
-        for sample in samples {
-            let at = mapping
-                .window(sample.world)
-                .ok_or(ShadowError::LightInsideFocusBody)?;
-            (low, high) = (low.min(at), high.max(at));
-        }
+        let (low, high) = bounds(samples, |sample| mapping.window(sample.world))?;
         if !window.widen(low, high, pass) {
             return Ok(window);
         }
@@ -577,4 +571,30 @@ fn fit(to_light: &DMat4, samples: &[Sample], reach: f64) -> Result<Window, Shado
              light-space coordinates are too large for their spread"
         ),
     })
+}
+
+/// The component-wise least and greatest of `point(sample)` over `samples`, in parallel over
+/// fixed chunks of [`FIT_CHUNK`] whose bounds are combined in chunk order, so the result is the
+/// same on any thread count; [`ShadowError::LightInsideFocusBody`] where `point` has none.
+fn bounds(
+    samples: &[Sample],
+    point: impl Fn(&Sample) -> Option<DVec3> + Sync,
+) -> Result<(DVec3, DVec3), ShadowError> {
+    let empty = (DVec3::INFINITY, DVec3::NEG_INFINITY);
+    let chunks: Vec<Option<(DVec3, DVec3)>> = samples
+        .par_chunks(FIT_CHUNK)
+        .map(|chunk| {
+            chunk.iter().try_fold(empty, |(lo, hi), sample| {
+                let p = point(sample)?;
+                Some((lo.min(p), hi.max(p)))
+            })
+        })
+        .collect();
+    chunks
+        .into_iter()
+        .try_fold(empty, |(lo, hi), chunk| {
+            let (low, high) = chunk?;
+            Some((lo.min(low), hi.max(high)))
+        })
+        .ok_or(ShadowError::LightInsideFocusBody)
 }
