@@ -179,5 +179,7 @@ for mesh in "${meshes[@]}"; do
 done
 names=()
 for mesh in "${meshes[@]}"; do names+=("$(basename "$mesh" .obj)"); done
-python3 benches/embree_report.py "$out" "${names[@]}"
+smoke=()
+[ "$IDLE_GATE" = 0 ] && smoke=(--ungated)
+python3 benches/embree_report.py "${smoke[@]}" "$out" "${names[@]}"
 echo "inputs, answers and JSON results: $out"
