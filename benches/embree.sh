@@ -28,6 +28,19 @@
 # arrays, no API namespace) are Embree's defaults, which its release builds use. Nothing of Embree is
 # kept in this repository.
 set -euo pipefail
+
+fail() {
+  echo "embree.sh: $*" >&2
+  exit 1
+}
+
+# Mesh paths and OUT are taken relative to where the script is called from; it runs from the root.
+meshes=()
+for mesh in "$@"; do
+  [ -f "$mesh" ] || fail "$mesh does not exist"
+  meshes+=("$(realpath "$mesh")")
+done
+[ -n "${OUT:-}" ] && OUT=$(realpath -m "$OUT")
 cd "$(dirname "$0")/.."
 
 EMBREEX_VERSION=4.4.0.post1
@@ -39,11 +52,6 @@ IDLE_GATE=${IDLE_GATE:-1}
 IDLE_TIMEOUT=${IDLE_TIMEOUT:-1800}
 ENV_DIR=${EMBREE_ENV:-/tmp/shadowlab-embree}
 
-fail() {
-  echo "embree.sh: $*" >&2
-  exit 1
-}
-
 need() {
   command -v "$1" >/dev/null || fail "$1 is missing: $2"
 }
@@ -52,18 +60,22 @@ need python3 "it makes the venv for the embreex wheel"
 need g++ "it builds benches/embree_bench.cpp"
 need cargo "it builds shadowlab's side"
 
-# The venv with the embreex wheel; prints the path of its libembree4.
+# The embreex wheel's libembree4 (in a venv, set up if missing); prints its path.
 embree_library() {
-  if [ ! -x "$ENV_DIR/venv/bin/python3" ]; then
+  local lib
+  find_library() {
+    find "$ENV_DIR/venv" -path '*/embreex.libs/libembree4*.so*' -print -quit 2>/dev/null || true
+  }
+  lib=$(find_library)
+  if [ -z "$lib" ]; then
     echo "setting up $ENV_DIR/venv with embreex $EMBREEX_VERSION" >&2
-    python3 -m venv "$ENV_DIR/venv" ||
+    [ -x "$ENV_DIR/venv/bin/python3" ] || python3 -m venv "$ENV_DIR/venv" ||
       fail "python3 -m venv failed (on Debian: apt-get install python3-venv)"
     "$ENV_DIR/venv/bin/pip" install -q "embreex==$EMBREEX_VERSION" ||
       fail "pip could not install embreex==$EMBREEX_VERSION"
+    lib=$(find_library)
+    [ -n "$lib" ] || fail "the embreex wheel in $ENV_DIR/venv carries no libembree4 library"
   fi
-  local lib
-  lib=$(find "$ENV_DIR/venv" -path '*/embreex.libs/libembree4*.so*' -print -quit)
-  [ -n "$lib" ] || fail "the embreex wheel in $ENV_DIR/venv carries no libembree4 library"
   echo "$lib"
 }
 
@@ -115,11 +127,9 @@ embree_headers() {
 lib=$(embree_library)
 include=$(embree_headers)
 bench="$ENV_DIR/embree_bench"
-if [ ! -x "$bench" ] || [ benches/embree_bench.cpp -nt "$bench" ]; then
-  echo "building $bench" >&2
-  g++ -std=c++17 -O3 -march=x86-64-v3 -DNDEBUG -pthread -I"$include" benches/embree_bench.cpp \
-    "$lib" -Wl,-rpath,"$(dirname "$lib")" -o "$bench"
-fi
+# Built every time (a few seconds), so that it always matches the source, headers and library.
+g++ -std=c++17 -O3 -march=x86-64-v3 -DNDEBUG -pthread -I"$include" benches/embree_bench.cpp \
+  "$lib" -Wl,-rpath,"$(dirname "$lib")" -o "$bench"
 versions=$("$bench" --version)
 headers=$include
 [ -f "$include/SOURCE" ] && headers="$include, from $(cat "$include/SOURCE")"
@@ -151,7 +161,6 @@ wait_idle() {
   done
 }
 
-meshes=("$@")
 if [ ${#meshes[@]} -eq 0 ]; then
   meshes=(data/meshes/bunny.obj)
   [ -f data/meshes/dragon.obj ] && meshes+=(data/meshes/dragon.obj)
@@ -161,10 +170,10 @@ mkdir -p "$out"
 [ "$IDLE_GATE" = 0 ] &&
   echo "IDLE_GATE=0: not gated on an idle machine; these figures are a smoke run, not a measurement"
 for mesh in "${meshes[@]}"; do
-  [ -f "$mesh" ] || fail "$mesh does not exist"
   name=$(basename "$mesh" .obj)
   dir="$out/$name"
   "$shadowlab" write "$mesh" "$dir"
+  rm -f "$dir"/shadowlab-*.json "$dir"/embree-*.json   # the report reads every repeat in $dir
   for ((repeat = 1; repeat <= REPEATS; repeat++)); do
     hits=()
     [ "$repeat" = 1 ] && hits=(--hits)
