@@ -12,7 +12,9 @@
 //! - *random*: from uniform points on a sphere of twice the bounding radius toward uniform points
 //!   in the bounding box: every ray starts outside and most cross the mesh.
 //!
-//! Figures are recorded with the machine and date in docs/benchmarks.md.
+//! Run with `cargo bench -p shadowlab-trace`. The side-by-side run against Intel Embree on larger
+//! ray sets (the same random rays among them) is `benches/embree.sh`; docs/benchmarks.md ("Ray
+//! casting against Intel Embree 4.4") records it with the machine and date.
 
 use std::hint::black_box;
 use std::path::{Path, PathBuf};
