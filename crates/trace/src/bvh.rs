@@ -41,7 +41,7 @@ use std::fmt;
 use glam::DVec3;
 use rayon::prelude::*;
 
-use crate::build::{self, Aabb, Node4};
+use crate::build::{self, Node4, Prim};
 use crate::error::TraceError;
 use crate::ray::{Hit, MAX_COORDINATE, PreparedRay, Ray};
 use crate::triangle::{self, TriangleVertices};
@@ -213,33 +213,28 @@ impl Bvh {
                 order.push(i);
             }
         }
-        let boxes: Vec<Aabb> = triangles
-            .iter()
-            .map(|t| {
-                let [a, b, c] = corners(t);
-                Aabb {
-                    lo: a.min(b).min(c),
-                    hi: a.max(b).max(c),
-                }
+        let mut prims: Vec<Prim> = order
+            .par_iter()
+            .map(|&id| {
+                let [a, b, c] = corners(&triangles[id as usize]);
+                Prim::new(a.min(b).min(c), a.max(b).max(c), id)
             })
             .collect();
-        let mut magnitude: f64 = 0.0;
-        for &i in &order {
-            let b = boxes[i as usize];
-            magnitude = magnitude.max(b.lo.abs().max_element().max(b.hi.abs().max_element()));
-        }
-        let (nodes, depth) = match build::build_binary(&boxes, &mut order) {
-            Some(root) => {
-                let flat = build::flatten(&root);
-                (flat.nodes, flat.depth)
-            }
-            None => (Vec::new(), 0),
-        };
+        // The largest of maxima: exact, so the same for any split.
+        let magnitude = order
+            .par_iter()
+            .map(|&i| {
+                let [a, b, c] = corners(&triangles[i as usize]);
+                a.abs().max(b.abs()).max(c.abs()).max_element()
+            })
+            .reduce(|| 0.0, f64::max);
+        let build::Tree { nodes, depth } = build::build(&mut prims);
         debug_assert!(depth <= build::MAX_DEPTH);
-        let stored = order
-            .iter()
-            .map(|&i| vertices(corners(&triangles[i as usize])))
+        let stored = prims
+            .par_iter()
+            .map(|p| vertices(corners(&triangles[p.id() as usize])))
             .collect();
+        let order = prims.iter().map(Prim::id).collect();
         Ok(Self {
             positions: positions.to_vec(),
             triangles: triangles.to_vec(),
