@@ -5,11 +5,13 @@
 //! of `n` triangles, each triangle is represented by the centre of its bounding box; along each
 //! axis where those centres spread, [`BINS`] equal bins over the centres' extent collect the
 //! triangles' boxes and counts, and each of the `BINS − 1` planes between bins is scored by
-//! `A(left)·n_left + A(right)·n_right` (A = surface area of the bins' union). The best plane of
-//! the three axes wins (the first on equal scores, axes in order x, y, z: determinism does not
-//! depend on comparing floating-point ties any other way). Splitting costs
-//! `NODE_COST + TRIANGLE_COST·score/A(node)`, a leaf `TRIANGLE_COST·n`; a node becomes a leaf
-//! when that is no dearer and `n ≤ MAX_LEAF_SIZE`, or when `n = 1`.
+//! `A(left)·b(n_left) + A(right)·b(n_right)` (A = surface area of the bins' union, `b(n) = ⌈n/4⌉`
+//! the blocks of four triangles that a side's leaves need: the tree's leaves are tested four
+//! triangles at a time, as in Embree's SAH for its four-triangle leaves). The best plane of the
+//! three axes wins (the first on equal scores, axes in order x, y, z: determinism does not depend
+//! on comparing floating-point ties any other way). Splitting costs
+//! `NODE_COST + BLOCK_COST·score/A(node)`, a leaf `BLOCK_COST·b(n)`; a node becomes a leaf when
+//! that is no dearer and `n ≤ MAX_LEAF_SIZE`, or when `n = 1`.
 //!
 //! Planes next to empty bins are not scored: a plane whose left neighbour bin is empty splits
 //! the triangles as the plane before it does, with the same score to the bit, and the first of
@@ -52,6 +54,8 @@ use std::cell::RefCell;
 use glam::DVec3;
 use rayon::prelude::*;
 
+use crate::triangle::{BLOCK, TriangleBlock, TriangleVertices};
+
 /// Bins per axis in the binned SAH.
 const BINS: usize = 32;
 /// The index of the last bin, as an f64.
@@ -59,10 +63,10 @@ const BINS: usize = 32;
 const LAST_BIN: f64 = (BINS - 1) as f64;
 /// The largest leaf, in triangles.
 const MAX_LEAF_SIZE: usize = 8;
-/// SAH cost of visiting a 4-wide node's box, relative to [`TRIANGLE_COST`].
+/// SAH cost of visiting a 4-wide node (four box tests at once), relative to [`BLOCK_COST`].
 const NODE_COST: f64 = 1.0;
-/// SAH cost of one ray–triangle test.
-const TRIANGLE_COST: f64 = 1.0;
+/// SAH cost of testing a ray against one block of four triangles (four tests at once).
+const BLOCK_COST: f64 = 1.0;
 /// Binary depth below which the SAH chooses splits; deeper nodes split at the median.
 const SAH_DEPTH_LIMIT: usize = 64;
 /// The largest possible depth of the binary tree (and so of the 4-wide one): the SAH part, then
@@ -461,8 +465,7 @@ impl Binning {
                 let k = filled[j - 1];
                 left = (left.0.union(boxes[k]), left.1 + counts[k]);
                 let (right_area, right_count) = right[j];
-                let score =
-                    left.0.half_area() * f64::from(left.1) + right_area * f64::from(right_count);
+                let score = left.0.half_area() * blocks(left.1) + right_area * blocks(right_count);
                 if best.is_none_or(|(b, _, _)| score < b) {
                     best = Some((score, axis, k + 1));
                 }
@@ -470,6 +473,13 @@ impl Binning {
         }
         best
     }
+}
+
+/// The number of [`TriangleBlock`]s that hold `n` triangles, as the SAH counts them.
+fn blocks(n: u32) -> f64 {
+    #[expect(clippy::cast_possible_truncation, reason = "BLOCK is 4")]
+    const PER_BLOCK: u32 = BLOCK as u32;
+    f64::from(n.div_ceil(PER_BLOCK))
 }
 
 /// What becomes of a range of `prims` with this extent at this binary depth: `None` for a leaf.
@@ -504,9 +514,8 @@ fn decide(prims: &[Prim], extent: &Extent, depth: usize) -> Option<Split> {
         })
     };
     let (score, axis, bin) = best.expect("centres spread on an axis");
-    #[expect(clippy::cast_precision_loss, reason = "counts below 2^32 are exact")]
-    let leaf_cost = TRIANGLE_COST * n as f64;
-    let split_cost = NODE_COST + TRIANGLE_COST * score / extent.bounds.half_area();
+    let leaf_cost = BLOCK_COST * blocks(u32::try_from(n).expect("triangle count fits u32"));
+    let split_cost = NODE_COST + BLOCK_COST * score / extent.bounds.half_area();
     if n <= MAX_LEAF_SIZE && leaf_cost <= split_cost {
         return None;
     }
@@ -696,4 +705,43 @@ fn subtree(range: Range<'_>, nodes: &mut Vec<Node4>) -> usize {
         }
     }
     depth + 1
+}
+
+/// Stores the leaves' triangles in blocks of [`BLOCK`], in the order of the leaves in `nodes`
+/// (depth first, lanes in order), and points each leaf lane at its first block. `prims` is the
+/// build's leaf order; `vertices` gives a triangle's vertices from its index.
+pub(crate) fn leaf_blocks(
+    nodes: &mut [Node4],
+    prims: &[Prim],
+    vertices: impl Fn(u32) -> TriangleVertices + Sync,
+) -> Vec<TriangleBlock> {
+    // (first triangle in `prims`, triangle count) of every leaf, in block order.
+    let mut leaves = Vec::new();
+    let mut next = 0;
+    for node in nodes.iter_mut() {
+        for lane in 0..4 {
+            let count = node.count[lane] as usize;
+            if count > 0 {
+                leaves.push((node.child[lane] as usize, count));
+                node.child[lane] = u32::try_from(next).expect("block count fits u32");
+                next += count.div_ceil(BLOCK);
+            }
+        }
+    }
+    let vertices = &vertices;
+    leaves
+        .par_iter()
+        .flat_map_iter(|&(start, count)| {
+            (0..count.div_ceil(BLOCK)).map(move |b| {
+                // Spare lanes repeat the leaf's last triangle.
+                let slot = |k: usize| &prims[start + (b * BLOCK + k).min(count - 1)];
+                let triangles: [TriangleVertices; BLOCK] =
+                    std::array::from_fn(|k| vertices(slot(k).id()));
+                TriangleBlock {
+                    p: std::array::from_fn(|c| std::array::from_fn(|k| triangles[k][c])),
+                    id: std::array::from_fn(|k| slot(k).id()),
+                }
+            })
+        })
+        .collect()
 }

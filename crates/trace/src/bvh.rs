@@ -5,7 +5,8 @@
 //! interval is computed for all four child boxes ([`PreparedRay::slab`], lane by lane); children
 //! whose interval meets `[t_min, t_best]` are pushed farthest first, so the nearest is visited
 //! next (closest hit) — any order serves the any-hit query, which stops at the first hit. A popped
-//! entry whose entry parameter exceeds the current best is skipped.
+//! entry whose entry parameter exceeds the current best is skipped. A leaf's triangles are tested
+//! four at a time (`triangle::intersect_block`, the same bits as one at a time).
 //!
 //! # Why the traversal finds what brute force finds
 //! Ize, "Robust BVH Ray Traversal", JCGT 2(2), 2013 (<https://jcgt.org/published/0002/02/02/>),
@@ -44,7 +45,7 @@ use rayon::prelude::*;
 use crate::build::{self, Node4, Prim};
 use crate::error::TraceError;
 use crate::ray::{Hit, MAX_COORDINATE, PreparedRay, Ray};
-use crate::triangle::{self, TriangleVertices};
+use crate::triangle::{self, TriangleBlock, TriangleVertices};
 
 /// Rays per parallel work item in the batch queries. The split of a batch into work items depends
 /// on this constant only; each ray's result depends on nothing but the ray, so the output is
@@ -107,12 +108,11 @@ pub struct BvhStats {
 pub struct Bvh {
     positions: Vec<DVec3>,
     triangles: Vec<[u32; 3]>,
-    /// 4-wide nodes, depth first, root first; empty without triangles.
+    /// 4-wide nodes, depth first, root first; empty without triangles. A leaf lane's `child` is
+    /// its first block.
     nodes: Vec<Node4>,
-    /// The stored triangles' vertices, in leaf order.
-    stored: Vec<TriangleVertices>,
-    /// The index (into `triangles`) of each stored triangle.
-    ids: Vec<u32>,
+    /// The stored triangles in blocks of four, leaf by leaf.
+    blocks: Vec<TriangleBlock>,
     /// Indices of the zero-area triangles, ascending.
     degenerate: Vec<u32>,
     /// The largest absolute coordinate of a stored triangle's vertex.
@@ -158,9 +158,9 @@ impl Bvh {
     /// Builds the hierarchy over `triangles` (index triples into `positions`). The inputs are
     /// copied; indices of triangles in [`Hit`]s refer to `triangles`.
     ///
-    /// Build: binned SAH with 32 bins per axis, leaves of at most 8 triangles, a binary tree
-    /// collapsed to 4 children per node (details in the `build` module). Parallel (rayon) for
-    /// large nodes; the tree is identical for any thread count.
+    /// Build: binned SAH with 32 bins per axis counting blocks of four triangles, leaves of at most
+    /// 8 triangles, a binary tree collapsed to 4 children per node (details in the `build`
+    /// module). Parallel (rayon) for large nodes; the tree is identical for any thread count.
     ///
     /// # Errors
     /// [`TraceError::TooManyTriangles`] beyond `u32::MAX` triangles;
@@ -228,19 +228,16 @@ impl Bvh {
                 a.abs().max(b.abs()).max(c.abs()).max_element()
             })
             .reduce(|| 0.0, f64::max);
-        let build::Tree { nodes, depth } = build::build(&mut prims);
+        let build::Tree { mut nodes, depth } = build::build(&mut prims);
         debug_assert!(depth <= build::MAX_DEPTH);
-        let stored = prims
-            .par_iter()
-            .map(|p| vertices(corners(&triangles[p.id() as usize])))
-            .collect();
-        let order = prims.iter().map(Prim::id).collect();
+        let blocks = build::leaf_blocks(&mut nodes, &prims, |id| {
+            vertices(corners(&triangles[id as usize]))
+        });
         Ok(Self {
             positions: positions.to_vec(),
             triangles: triangles.to_vec(),
             nodes,
-            stored,
-            ids: order,
+            blocks,
             degenerate,
             magnitude,
             depth,
@@ -476,6 +473,13 @@ impl Bvh {
         }
     }
 
+    /// The blocks of the leaf whose first block is `first` and which holds `count` triangles.
+    #[inline(always)]
+    fn leaf(&self, first: u32, count: u32) -> &[TriangleBlock] {
+        let first = first as usize;
+        &self.blocks[first..first + (count as usize).div_ceil(triangle::BLOCK)]
+    }
+
     /// The parameter intervals of a node's four child boxes, clipped to `[t_lo, t_hi]`: lanes
     /// with `near <= far` are entered. Lane by lane the same operations as [`PreparedRay::slab`].
     #[inline(always)]
@@ -534,17 +538,16 @@ impl Bvh {
                 continue;
             }
             if entry.count > 0 {
-                let start = entry.child as usize;
-                for slot in start..start + entry.count as usize {
-                    let Some((t, u, v)) = triangle::intersect::<KZ>(ray, &self.stored[slot]) else {
-                        continue;
-                    };
-                    let id = self.ids[slot];
-                    if t_min < t && (t < best_t || (t == best_t && id < best_id)) {
-                        best_t = t;
-                        best_id = id;
-                        best_uv = Some((u, v));
-                    }
+                for block in self.leaf(entry.child, entry.count) {
+                    triangle::intersect_block::<KZ>(ray, block, |k, t, u, v| {
+                        let id = block.id[k];
+                        if t_min < t && (t < best_t || (t == best_t && id < best_id)) {
+                            best_t = t;
+                            best_id = id;
+                            best_uv = Some((u, v));
+                        }
+                        false
+                    });
                 }
                 continue;
             }
@@ -598,12 +601,10 @@ impl Bvh {
         });
         while let Some(entry) = stack.pop() {
             if entry.count > 0 {
-                let start = entry.child as usize;
-                for slot in start..start + entry.count as usize {
-                    if let Some((t, _, _)) = triangle::intersect::<KZ>(ray, &self.stored[slot])
-                        && t_min < t
-                        && t < t_max
-                    {
+                for block in self.leaf(entry.child, entry.count) {
+                    if triangle::intersect_block::<KZ>(ray, block, |_, t, _, _| {
+                        t_min < t && t < t_max
+                    }) {
                         return true;
                     }
                 }
