@@ -6,7 +6,9 @@
 //! whose interval meets `[t_min, t_best]` are pushed farthest first, so the nearest is visited
 //! next (closest hit) — any order serves the any-hit query, which stops at the first hit. A popped
 //! entry whose entry parameter exceeds the current best is skipped. A leaf's triangles are tested
-//! four at a time (`triangle::intersect_block`, the same bits as one at a time).
+//! four at a time (`triangle::intersect_block`, the same bits as one at a time). The batch queries
+//! trace runs of coherent rays together (the `packet` module), each ray keeping its own best and
+//! its own tests, so that the argument below holds for each ray of a packet.
 //!
 //! # Why the traversal finds what brute force finds
 //! Ize, "Robust BVH Ray Traversal", JCGT 2(2), 2013 (<https://jcgt.org/published/0002/02/02/>),
@@ -37,6 +39,8 @@
 //! With ties broken by triangle index, the result is a function of the ray and the mesh alone:
 //! the same as a loop over all triangles ([`Bvh::intersect_triangle`]), whatever the tree.
 
+mod packet;
+
 use std::fmt;
 
 use glam::DVec3;
@@ -46,6 +50,7 @@ use crate::build::{self, Node4, Prim};
 use crate::error::TraceError;
 use crate::ray::{Hit, MAX_COORDINATE, PreparedRay, Ray};
 use crate::triangle::{self, TriangleBlock, TriangleVertices};
+use packet::{PACKET, Packet, PacketStack};
 
 /// Rays per parallel work item in the batch queries. The split of a batch into work items depends
 /// on this constant only; each ray's result depends on nothing but the ray, so the output is
@@ -401,48 +406,77 @@ impl Bvh {
     }
 
     /// [`Bvh::closest_hit`] for every ray, in parallel (rayon, [`RAY_CHUNK`] rays per work item);
-    /// the output is identical for any thread count.
+    /// the output is identical for any thread count. Runs of consecutive rays that share their
+    /// direction signs are traced together, a few at a time (the `packet` module): order a
+    /// coherent batch so that neighbouring rays are next to each other (a shadow map's rays row by
+    /// row, say). Every answer is the single query's, bit for bit, whatever the order.
     ///
     /// # Panics
     /// If a ray is invalid (the message names its index) or `t_min` or `t_max` is NaN.
     #[must_use]
     pub fn closest_hits(&self, rays: &[Ray], t_min: f64, t_max: f64) -> Vec<Option<Hit>> {
         check_range(t_min, t_max);
-        self.batch(rays, |ray, stack| {
-            self.closest_prepared(ray, t_min, t_max, stack)
-        })
+        self.batch(
+            rays,
+            |ray, stack| self.closest_prepared(ray, t_min, t_max, stack),
+            |rays, packet, stack, out| self.closest_packet(rays, packet, t_min, t_max, stack, out),
+        )
     }
 
     /// [`Bvh::occluded`] for every ray, in parallel (rayon, [`RAY_CHUNK`] rays per work item); the
-    /// output is identical for any thread count.
+    /// output is identical for any thread count. Coherent runs of rays are traced together, as in
+    /// [`Bvh::closest_hits`].
     ///
     /// # Panics
     /// If a ray is invalid (the message names its index) or `t_min` or `t_max` is NaN.
     #[must_use]
     pub fn occluded_all(&self, rays: &[Ray], t_min: f64, t_max: f64) -> Vec<bool> {
         check_range(t_min, t_max);
-        self.batch(rays, |ray, stack| {
-            self.occluded_prepared(ray, t_min, t_max, stack)
-        })
+        self.batch(
+            rays,
+            |ray, stack| self.occluded_prepared(ray, t_min, t_max, stack),
+            |rays, packet, stack, out| self.occluded_packet(rays, packet, t_min, t_max, stack, out),
+        )
     }
 
-    fn batch<T: Send>(
+    /// Casts `rays` in parallel work items of [`RAY_CHUNK`] rays, each in packets of [`PACKET`]
+    /// consecutive rays where they form one (`packet`), one by one otherwise (`single`); each
+    /// answer is written in its ray's place.
+    fn batch<T: Clone + Default + Send>(
         &self,
         rays: &[Ray],
-        query: impl Fn(&PreparedRay, &mut Stack) -> T + Sync,
+        single: impl Fn(&PreparedRay, &mut Stack) -> T + Sync,
+        packet: impl Fn(&[PreparedRay], &Packet, &mut PacketStack, &mut [T]) + Sync,
     ) -> Vec<T> {
-        rays.par_chunks(RAY_CHUNK)
+        let mut out = vec![T::default(); rays.len()];
+        out.par_chunks_mut(RAY_CHUNK)
+            .zip(rays.par_chunks(RAY_CHUNK))
             .enumerate()
-            .flat_map_iter(|(chunk, rays)| {
+            .for_each(|(chunk, (out, rays))| {
+                // All of the work item's rays first: their loads overlap.
+                let prepared: Vec<PreparedRay> = rays
+                    .iter()
+                    .enumerate()
+                    .map(|(i, ray)| {
+                        PreparedRay::new(ray, self.magnitude).unwrap_or_else(|e| {
+                            panic!("invalid ray {}: {e}", chunk * RAY_CHUNK + i)
+                        })
+                    })
+                    .collect();
                 let mut stack = new_stack();
-                let query = &query;
-                rays.iter().enumerate().map(move |(i, ray)| {
-                    let prepared = PreparedRay::new(ray, self.magnitude)
-                        .unwrap_or_else(|e| panic!("invalid ray {}: {e}", chunk * RAY_CHUNK + i));
-                    query(&prepared, &mut stack)
-                })
-            })
-            .collect()
+                let mut packet_stack = PacketStack::new();
+                let mut set_up = Packet::default();
+                for (out, rays) in out.chunks_mut(PACKET).zip(prepared.chunks(PACKET)) {
+                    if set_up.set(rays) {
+                        packet(rays, &set_up, &mut packet_stack, out);
+                    } else {
+                        for (out, ray) in out.iter_mut().zip(rays) {
+                            *out = single(ray, &mut stack);
+                        }
+                    }
+                }
+            });
+        out
     }
 
     fn closest_prepared(
