@@ -86,7 +86,9 @@ impl ShadowMap {
     /// Makes the logarithmic map exactly: one ray of light per texel centre, found through the
     /// inverse mapping ([`crate::logarithmic::LogarithmicMap::texel_ray`]), cast against `bvh`;
     /// the first hit's depth (and the second's, if asked for) through the forward mapping, stored
-    /// in `options.format`. Rows are cast in parallel; each texel's value depends on its ray alone.
+    /// in `options.format`. Rows are cast in parallel, each row's rays as one batch
+    /// ([`Bvh::closest_hits`], which traces neighbouring texels' rays together); each texel's
+    /// value depends on its ray alone.
     ///
     /// # Errors
     /// [`ShadowError::NotDefined`] for a projective set-up (rasterize it with [`Self::render`]);
@@ -99,31 +101,44 @@ impl ShadowMap {
             });
         };
         let side = options.resolution as usize;
-        let texel_depths = |i: usize, j: usize| -> Result<(f64, f64), ShadowError> {
-            #[expect(clippy::cast_precision_loss, reason = "texel indices are small")]
-            let centre = |k: usize| (k as f64 + 0.5) / side as f64 * 2.0 - 1.0;
-            let (from, to) = map.texel_ray(centre(i), centre(j));
-            let ray = Ray::new(from, to - from)?;
-            let store = |t: f64| {
-                let depth = map.ndc(ray.at(t)).map_or(1.0, |ndc| 0.5 * (ndc.z + 1.0));
-                options.format.decode(options.format.encode(depth))
-            };
-            let Some(first) = bvh.closest_hit(&ray, 0.0, 1.0) else {
-                return Ok((1.0, 1.0));
-            };
-            // The next surface: beyond the first by more than SAME_SURFACE, so that the first
-            // surface's neighbour across a shared edge (hit a few ulps further) is not taken for it.
-            let second = if options.second_depth {
-                bvh.closest_hit(&ray, first.t + SAME_SURFACE, 1.0)
-                    .map_or(1.0, |h| store(h.t))
-            } else {
-                1.0
-            };
-            Ok((store(first.t), second))
+        #[expect(clippy::cast_precision_loss, reason = "texel indices are small")]
+        let centre = |k: usize| (k as f64 + 0.5) / side as f64 * 2.0 - 1.0;
+        let store = |ray: &Ray, t: f64| {
+            let depth = map.ndc(ray.at(t)).map_or(1.0, |ndc| 0.5 * (ndc.z + 1.0));
+            options.format.decode(options.format.encode(depth))
+        };
+        let row_depths = |j: usize| -> Result<Vec<(f64, f64)>, ShadowError> {
+            // The row's rays in texel order, neighbours side by side.
+            let rays = (0..side)
+                .map(|i| {
+                    let (from, to) = map.texel_ray(centre(i), centre(j));
+                    Ray::new(from, to - from)
+                })
+                .collect::<Result<Vec<Ray>, _>>()?;
+            let firsts = bvh.closest_hits(&rays, 0.0, 1.0);
+            Ok(rays
+                .iter()
+                .zip(firsts)
+                .map(|(ray, first)| {
+                    let Some(first) = first else {
+                        return (1.0, 1.0);
+                    };
+                    // The next surface: beyond the first by more than SAME_SURFACE, so that the
+                    // first surface's neighbour across a shared edge (hit a few ulps further) is
+                    // not taken for it.
+                    let second = if options.second_depth {
+                        bvh.closest_hit(ray, first.t + SAME_SURFACE, 1.0)
+                            .map_or(1.0, |h| store(ray, h.t))
+                    } else {
+                        1.0
+                    };
+                    (store(ray, first.t), second)
+                })
+                .collect())
         };
         let rows: Vec<Vec<(f64, f64)>> = (0..side)
             .into_par_iter()
-            .map(|j| (0..side).map(|i| texel_depths(i, j)).collect())
+            .map(row_depths)
             .collect::<Result<_, ShadowError>>()?;
         let (nearest, second): (Vec<f64>, Vec<f64>) = rows.into_iter().flatten().unzip();
         Ok(Self {

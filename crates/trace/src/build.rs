@@ -1,288 +1,572 @@
-//! Building the tree: a binary tree by binned SAH, collapsed into a 4-wide tree.
+//! Building the tree: binned SAH splits, collapsed into 4-wide nodes as they are made.
 //!
-//! # Binary build (binned surface-area heuristic)
+//! # Binary splits (binned surface-area heuristic)
 //! Wald, "On fast Construction of SAH-based Bounding Volume Hierarchies", IEEE RT 2007: for a node
 //! of `n` triangles, each triangle is represented by the centre of its bounding box; along each
 //! axis where those centres spread, [`BINS`] equal bins over the centres' extent collect the
 //! triangles' boxes and counts, and each of the `BINS − 1` planes between bins is scored by
-//! `A(left)·n_left + A(right)·n_right` (A = surface area of the bins' union). The best plane of
-//! the three axes wins (the first on equal scores, axes in order x, y, z: determinism does not
-//! depend on comparing floating-point ties any other way). Splitting costs
-//! `NODE_COST + TRIANGLE_COST·score/A(node)`, a leaf `TRIANGLE_COST·n`; a node becomes a leaf
-//! when that is no dearer and `n ≤ MAX_LEAF_SIZE`, or when `n = 1`.
+//! `A(left)·b(n_left) + A(right)·b(n_right)` (A = surface area of the bins' union, `b(n) = ⌈n/4⌉`
+//! the blocks of four triangles that a side's leaves need: the tree's leaves are tested four
+//! triangles at a time, as in Embree's SAH for its four-triangle leaves). The best plane of the
+//! three axes wins (the first on equal scores, axes in order x, y, z: determinism does not depend
+//! on comparing floating-point ties any other way). Splitting costs
+//! `NODE_COST + BLOCK_COST·score/A(node)`, a leaf `BLOCK_COST·b(n)`; a node becomes a leaf when
+//! that is no dearer and `n ≤ MAX_LEAF_SIZE`, or when `n = 1`.
+//!
+//! Planes next to empty bins are not scored: a plane whose left neighbour bin is empty splits
+//! the triangles as the plane before it does, with the same score to the bit, and the first of
+//! equal scores wins, so only the first plane after each non-empty bin can win. This makes the
+//! sweep cost `O(min(n, BINS))` per axis instead of `O(BINS)`, which is what small nodes (most
+//! nodes) spend their time on; the chosen plane is the same.
 //!
 //! Nodes whose centres all coincide are split in the middle of their list (or made a leaf). From
 //! depth [`SAH_DEPTH_LIMIT`] on, nodes are split at the median centre along their widest axis, so
 //! the binary depth never exceeds [`MAX_DEPTH`] = `SAH_DEPTH_LIMIT + 32` (at most 2³² triangles)
 //! whatever the input: the recursion, and the traversal stack, stay shallow.
 //!
-//! # Determinism
-//! Every choice depends only on the input: binning, scoring and the in-place partition run
-//! sequentially per node, and the two halves of a large node are built by `rayon::join` into
-//! disjoint parts of the index list. The resulting tree, and the order of triangles in its leaves,
-//! is the same for any thread count.
+//! # Data
+//! The build moves the triangles' boxes themselves, not indices into them, so that binning and
+//! partitioning read memory in order: a [`Prim`] is its box as two four-lane vectors (x, y, z and
+//! a spare lane holding the triangle's index), 64 bytes, on which a union or a centre is a couple
+//! of AVX instructions. Partitioning a node gathers the bounds and centre bounds of both sides in
+//! the same pass, so no pass is spent on a node's bounds. A thread's bins are reused from node to
+//! node (only their counts are cleared). Binning a node of at least [`PARALLEL_BINNING`]
+//! triangles is split into chunks of [`BINNING_CHUNK`] binned in parallel; bins combine by min,
+//! max and integer addition, which are exact, so the bins — and the tree — are the same for any
+//! split and thread count.
 //!
 //! # Collapse to four children
 //! Each binary inner node takes the place of a 4-wide node: while it has fewer than four
 //! children, its inner child of largest surface area (the first on ties) is replaced by that
-//! child's two children. Nodes are stored in depth-first order, parent first.
+//! child's two children. Nodes are stored in depth-first order, parent first. The collapse is done
+//! top-down as the splits are made (a child is split when it is chosen for expansion or becomes a
+//! child of its own 4-wide node), which gives the tree the binary build followed by a bottom-up
+//! collapse would give, without building the binary tree.
+//!
+//! # Determinism
+//! Every choice depends only on the input: binning (whatever its chunks), scoring and the in-place
+//! partition are the same sequential definitions, and the children of a large 4-wide node are
+//! built in parallel into their own node lists, appended in lane order. The resulting tree, and the
+//! order of triangles in its leaves, is the same for any thread count.
+
+use std::cell::RefCell;
 
 use glam::DVec3;
+use rayon::prelude::*;
+
+use crate::triangle::{BLOCK, TriangleBlock, TriangleVertices};
 
 /// Bins per axis in the binned SAH.
 const BINS: usize = 32;
+/// The index of the last bin, as an f64.
+#[expect(clippy::cast_precision_loss, reason = "BINS is 32")]
+const LAST_BIN: f64 = (BINS - 1) as f64;
 /// The largest leaf, in triangles.
 const MAX_LEAF_SIZE: usize = 8;
-/// SAH cost of visiting a 4-wide node's box, relative to [`TRIANGLE_COST`].
+/// SAH cost of visiting a 4-wide node (four box tests at once), relative to [`BLOCK_COST`].
 const NODE_COST: f64 = 1.0;
-/// SAH cost of one ray–triangle test.
-const TRIANGLE_COST: f64 = 1.0;
+/// SAH cost of testing a ray against one block of four triangles (four tests at once).
+const BLOCK_COST: f64 = 1.0;
 /// Binary depth below which the SAH chooses splits; deeper nodes split at the median.
 const SAH_DEPTH_LIMIT: usize = 64;
 /// The largest possible depth of the binary tree (and so of the 4-wide one): the SAH part, then
 /// at most 32 median halvings of at most 2³² triangles.
 pub(crate) const MAX_DEPTH: usize = SAH_DEPTH_LIMIT + 32;
-/// Nodes of at least this many triangles build their two halves in parallel.
+/// 4-wide nodes of at least this many triangles build their children in parallel.
 const PARALLEL_THRESHOLD: usize = 4096;
+/// Nodes of at least this many triangles are binned in parallel chunks.
+const PARALLEL_BINNING: usize = 1 << 15;
+/// Triangles per parallel work item when binning a large node.
+const BINNING_CHUNK: usize = 1 << 13;
 
-/// An axis-aligned box; empty when `lo > hi` on some axis.
+/// Four f64 lanes: x, y, z and a spare lane that pads the vector to 256 bits, so that box
+/// operations compile to single AVX instructions. The spare lane is not geometry: whatever it
+/// holds, nothing reads it as a coordinate.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Lanes(pub(crate) [f64; 4]);
+
+impl Lanes {
+    fn splat(value: f64) -> Self {
+        Self([value; 4])
+    }
+
+    /// Lane by lane `a < b ? a : b`: for the finite coordinates of boxes the same values as
+    /// `f64::min` (up to the sign of a zero, which no comparison sees), in one instruction.
+    #[inline(always)]
+    fn min(self, other: Self) -> Self {
+        Self(std::array::from_fn(|k| {
+            if self.0[k] < other.0[k] {
+                self.0[k]
+            } else {
+                other.0[k]
+            }
+        }))
+    }
+
+    /// Lane by lane `a > b ? a : b` (see [`Lanes::min`]).
+    #[inline(always)]
+    fn max(self, other: Self) -> Self {
+        Self(std::array::from_fn(|k| {
+            if self.0[k] > other.0[k] {
+                self.0[k]
+            } else {
+                other.0[k]
+            }
+        }))
+    }
+
+    #[inline(always)]
+    fn add(self, other: Self) -> Self {
+        Self(std::array::from_fn(|k| self.0[k] + other.0[k]))
+    }
+
+    #[inline(always)]
+    fn sub(self, other: Self) -> Self {
+        Self(std::array::from_fn(|k| self.0[k] - other.0[k]))
+    }
+
+    #[inline(always)]
+    fn mul(self, other: Self) -> Self {
+        Self(std::array::from_fn(|k| self.0[k] * other.0[k]))
+    }
+}
+
+/// An axis-aligned box (coordinates in lanes 0 to 2); empty when `lo > hi` on some axis.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct Aabb {
-    pub(crate) lo: DVec3,
-    pub(crate) hi: DVec3,
+    pub(crate) lo: Lanes,
+    pub(crate) hi: Lanes,
 }
 
 impl Aabb {
     /// The empty box: the identity of [`Aabb::union`].
-    pub(crate) const EMPTY: Self = Self {
-        lo: DVec3::INFINITY,
-        hi: DVec3::NEG_INFINITY,
+    const EMPTY: Self = Self {
+        lo: Lanes([f64::INFINITY; 4]),
+        hi: Lanes([f64::NEG_INFINITY; 4]),
     };
 
-    pub(crate) fn union(self, other: Self) -> Self {
+    #[inline(always)]
+    fn union(self, other: Self) -> Self {
         Self {
             lo: self.lo.min(other.lo),
             hi: self.hi.max(other.hi),
         }
     }
 
-    fn grow(&mut self, p: DVec3) {
+    #[inline(always)]
+    fn grow(&mut self, p: Lanes) {
         self.lo = self.lo.min(p);
         self.hi = self.hi.max(p);
     }
 
     /// Half the surface area (the SAH only compares ratios); 0 for an empty box.
-    pub(crate) fn half_area(&self) -> f64 {
-        let d = (self.hi - self.lo).max(DVec3::ZERO);
-        d.x * d.y + d.y * d.z + d.z * d.x
+    fn half_area(&self) -> f64 {
+        let d = self.hi.sub(self.lo).max(Lanes::splat(0.0)).0;
+        d[0] * d[1] + d[1] * d[2] + d[2] * d[0]
     }
 
-    fn center(&self) -> DVec3 {
-        (self.lo + self.hi) * 0.5
+    /// The centre, `(lo + hi)·0.5`.
+    #[inline(always)]
+    fn center(&self) -> Lanes {
+        self.lo.add(self.hi).mul(Lanes::splat(0.5))
     }
 }
 
-/// A node of the binary tree under construction.
-pub(crate) enum BuildNode {
-    /// Triangles `start..start + count` of the build order.
-    Leaf {
-        bounds: Aabb,
-        start: usize,
-        count: usize,
-    },
-    /// Two subtrees.
-    Inner {
-        bounds: Aabb,
-        children: Box<[BuildNode; 2]>,
-    },
+/// A triangle as the build sees it: its bounding box, whose spare lanes hold the triangle's index
+/// in the mesh (exactly: every `u32` is an f64), so that one triangle fills 64 bytes.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Prim {
+    bounds: Aabb,
 }
 
-impl BuildNode {
-    pub(crate) fn bounds(&self) -> Aabb {
-        match self {
-            Self::Leaf { bounds, .. } | Self::Inner { bounds, .. } => *bounds,
+impl Prim {
+    pub(crate) fn new(lo: DVec3, hi: DVec3, id: u32) -> Self {
+        let id = f64::from(id);
+        Self {
+            bounds: Aabb {
+                lo: Lanes([lo.x, lo.y, lo.z, id]),
+                hi: Lanes([hi.x, hi.y, hi.z, id]),
+            },
         }
     }
-}
 
-/// What the recursion reads: each triangle's box and the box's centre, by triangle.
-struct Primitives<'a> {
-    boxes: &'a [Aabb],
-    centers: &'a [DVec3],
-}
-
-/// Builds the binary tree over `order` (indices into `boxes`), permuting `order` into leaf order.
-pub(crate) fn build_binary(boxes: &[Aabb], order: &mut [u32]) -> Option<BuildNode> {
-    if order.is_empty() {
-        return None;
+    /// The triangle's index in the mesh.
+    pub(crate) fn id(&self) -> u32 {
+        #[expect(
+            clippy::cast_possible_truncation,
+            clippy::cast_sign_loss,
+            reason = "the spare lane holds a u32 exactly"
+        )]
+        let id = self.bounds.lo.0[3] as u32;
+        id
     }
-    let centers: Vec<DVec3> = boxes.iter().map(Aabb::center).collect();
-    let primitives = Primitives {
-        boxes,
-        centers: &centers,
+}
+
+/// What a node's split and leaf decisions read of its triangles: their bounds and the bounds of
+/// their boxes' centres.
+#[derive(Clone, Copy)]
+struct Extent {
+    bounds: Aabb,
+    centers: Aabb,
+}
+
+impl Extent {
+    const EMPTY: Self = Self {
+        bounds: Aabb::EMPTY,
+        centers: Aabb::EMPTY,
     };
-    Some(build_node(&primitives, order, 0, 0))
+
+    fn add(&mut self, prim: &Prim) {
+        self.bounds = self.bounds.union(prim.bounds);
+        self.centers.grow(prim.bounds.center());
+    }
+
+    fn union(self, other: Self) -> Self {
+        Self {
+            bounds: self.bounds.union(other.bounds),
+            centers: self.centers.union(other.centers),
+        }
+    }
+
+    fn of(prims: &[Prim]) -> Self {
+        let mut extent = Self::EMPTY;
+        for prim in prims {
+            extent.add(prim);
+        }
+        extent
+    }
+}
+
+/// How a node's triangles are divided between its two children.
+#[derive(Clone, Copy)]
+enum Split {
+    /// By bin along `axis`: bins `< bin` go left (the bins of [`Binning::best_split`]).
+    Binned {
+        axis: usize,
+        lo: f64,
+        scale: f64,
+        bin: usize,
+    },
+    /// At the median centre along the widest centre axis ([`median_split`]).
+    Median,
+    /// In the middle of the list (all centres coincide).
+    Middle,
+}
+
+/// A contiguous range of the build order with its extent and binary depth, and what becomes of it:
+/// split (`split` is `Some`) or a leaf.
+struct Range<'a> {
+    prims: &'a mut [Prim],
+    start: usize,
+    extent: Extent,
+    depth: usize,
+    split: Option<Split>,
+}
+
+impl<'a> Range<'a> {
+    fn new(prims: &'a mut [Prim], start: usize, extent: Extent, depth: usize) -> Self {
+        let split = decide(prims, &extent, depth);
+        Self {
+            prims,
+            start,
+            extent,
+            depth,
+            split,
+        }
+    }
+
+    /// Divides the range as decided: its two children, each with its own decision.
+    fn divide(self) -> [Range<'a>; 2] {
+        let split = self.split.expect("an inner range");
+        let n = self.prims.len();
+        let (mid, left, right) = match split {
+            Split::Binned {
+                axis,
+                lo,
+                scale,
+                bin,
+            } => partition(self.prims, |b| bin_of(b.center().0[axis], lo, scale) < bin),
+            Split::Median => {
+                let mid = median_split(self.prims, &self.extent.centers);
+                let (l, r) = self.prims.split_at(mid);
+                (mid, Extent::of(l), Extent::of(r))
+            }
+            Split::Middle => {
+                let mid = n / 2;
+                let (l, r) = self.prims.split_at(mid);
+                (mid, Extent::of(l), Extent::of(r))
+            }
+        };
+        let (l, r) = self.prims.split_at_mut(mid);
+        let depth = self.depth + 1;
+        if n >= PARALLEL_THRESHOLD {
+            let (l, r) = rayon::join(
+                || Range::new(l, self.start, left, depth),
+                || Range::new(r, self.start + mid, right, depth),
+            );
+            [l, r]
+        } else {
+            [
+                Range::new(l, self.start, left, depth),
+                Range::new(r, self.start + mid, right, depth),
+            ]
+        }
+    }
 }
 
 /// The bin of a centre coordinate `c` along an axis whose centres start at `lo`, with
-/// `scale = BINS/extent`: `⌊(c − lo)·scale⌋`, at most `BINS − 1`.
-#[inline]
+/// `scale = BINS/extent`: `⌊(c − lo)·scale⌋`, at most `BINS − 1` ([`bin_index`] of the product).
+#[inline(always)]
 fn bin_of(c: f64, lo: f64, scale: f64) -> usize {
+    bin_index((c - lo) * scale)
+}
+
+/// `⌊t⌋`, at most `BINS − 1`, for `t = (c − lo)·scale` (in `[0, BINS]` up to rounding; NaN, from
+/// an axis without extent, gives 0).
+#[inline(always)]
+fn bin_index(t: f64) -> usize {
+    // Clamped as floats first (NaN to 0), so that the conversion needs no saturation.
+    let t = if t < LAST_BIN { t } else { LAST_BIN };
+    let t = if t > 0.0 { t } else { 0.0 };
     #[expect(
         clippy::cast_possible_truncation,
         clippy::cast_sign_loss,
-        reason = "the float-to-int cast saturates: (c − lo)·scale lies in [0, BINS] and is clamped"
+        reason = "t lies in [0, BINS − 1]"
     )]
-    let bin = ((c - lo) * scale) as usize;
-    bin.min(BINS - 1)
+    let bin = t as u32 as usize;
+    bin
 }
 
-/// The best binned split of a node: `(score, axis, first bin of the right side)`.
-fn best_split(p: &Primitives<'_>, order: &[u32], centers: Aabb) -> Option<(f64, usize, usize)> {
-    let extent = centers.hi - centers.lo;
-    // The axes along which the centres spread, in order.
-    let mut axes = [0; 3];
-    let mut count = 0;
-    for axis in 0..3 {
-        if extent[axis] > 0.0 {
-            axes[count] = axis;
-            count += 1;
-        }
+/// [`bin_index`] of the first three lanes.
+#[inline(always)]
+fn bin_indices(t: Lanes) -> [usize; 3] {
+    [bin_index(t.0[0]), bin_index(t.0[1]), bin_index(t.0[2])]
+}
+
+/// Per axis and bin, the union of the boxes of the triangles whose centres fall in it, and their
+/// number. A bin's box is meaningful only when its count is not zero: clearing the bins clears the
+/// counts, and a bin's first triangle sets its box.
+#[derive(Clone)]
+struct Bins {
+    boxes: [[Aabb; BINS]; 3],
+    counts: [[u32; BINS]; 3],
+}
+
+thread_local! {
+    /// The bins of the nodes a thread bins alone, reused from node to node (no work is spawned
+    /// while they are borrowed).
+    static SCRATCH: RefCell<Bins> = const { RefCell::new(Bins::EMPTY) };
+}
+
+impl Bins {
+    const EMPTY: Self = Self {
+        boxes: [[Aabb::EMPTY; BINS]; 3],
+        counts: [[0; BINS]; 3],
+    };
+
+    fn clear(&mut self) {
+        self.counts = [[0; BINS]; 3];
     }
-    let axes = &axes[..count];
-    #[expect(clippy::cast_precision_loss, reason = "BINS is 32")]
-    let scale = extent.map(|e| BINS as f64 / e);
-    // One pass over the triangles fills the bins of every axis.
-    let mut bins = [[(Aabb::EMPTY, 0_usize); BINS]; 3];
-    for &i in order {
-        let (bounds, center) = (p.boxes[i as usize], p.centers[i as usize]);
-        for &axis in axes {
-            let bin = &mut bins[axis][bin_of(center[axis], centers.lo[axis], scale[axis])];
-            bin.0 = bin.0.union(bounds);
-            bin.1 += 1;
-        }
+
+    #[inline(always)]
+    fn add(&mut self, axis: usize, k: usize, bounds: Aabb, count: u32) {
+        let bin = &mut self.boxes[axis][k];
+        *bin = if self.counts[axis][k] == 0 {
+            bounds
+        } else {
+            bin.union(bounds)
+        };
+        self.counts[axis][k] += count;
     }
-    let mut best: Option<(f64, usize, usize)> = None;
-    for &axis in axes {
-        let bins = &bins[axis];
-        // Right-to-left sweep: area and count of bins k.. for every k.
-        let mut right = [(0.0, 0_usize); BINS];
-        let mut acc = (Aabb::EMPTY, 0);
-        for k in (1..BINS).rev() {
-            acc = (acc.0.union(bins[k].0), acc.1 + bins[k].1);
-            right[k] = (acc.0.half_area(), acc.1);
-        }
-        let mut left = (Aabb::EMPTY, 0);
-        for k in 1..BINS {
-            left = (left.0.union(bins[k - 1].0), left.1 + bins[k - 1].1);
-            let (right_area, right_count) = right[k];
-            if left.1 == 0 || right_count == 0 {
-                continue;
+
+    /// Both bin sets together (exact: min, max and integer addition).
+    fn merge(mut self, other: &Self) -> Self {
+        for axis in 0..3 {
+            for k in 0..BINS {
+                if other.counts[axis][k] > 0 {
+                    self.add(axis, k, other.boxes[axis][k], other.counts[axis][k]);
+                }
             }
-            #[expect(clippy::cast_precision_loss, reason = "counts below 2^32 are exact")]
-            let score = left.0.half_area() * left.1 as f64 + right_area * right_count as f64;
-            if best.is_none_or(|(b, _, _)| score < b) {
-                best = Some((score, axis, k));
+        }
+        self
+    }
+}
+
+/// The binning of one node: the axes along which its centres spread, and per axis the origin and
+/// scale of the bins.
+struct Binning {
+    axes: [usize; 3],
+    count: usize,
+    lo: Lanes,
+    scale: Lanes,
+}
+
+impl Binning {
+    fn new(centers: &Aabb) -> Self {
+        let extent = centers.hi.sub(centers.lo).0;
+        let mut axes = [0; 3];
+        let mut count = 0;
+        for (axis, &e) in extent[..3].iter().enumerate() {
+            if e > 0.0 {
+                axes[count] = axis;
+                count += 1;
+            }
+        }
+        #[expect(clippy::cast_precision_loss, reason = "BINS is 32")]
+        let scale = Lanes(extent.map(|e| BINS as f64 / e));
+        Self {
+            axes,
+            count,
+            lo: centers.lo,
+            scale,
+        }
+    }
+
+    fn axes(&self) -> &[usize] {
+        &self.axes[..self.count]
+    }
+
+    /// Adds `prims` to cleared `bins`. Every axis is binned (an axis without extent puts every
+    /// triangle in its bin 0), so that the loop has no branches; only [`Binning::axes`] are scored.
+    fn bin(&self, prims: &[Prim], bins: &mut Bins) {
+        for prim in prims {
+            let k = bin_indices(prim.bounds.center().sub(self.lo).mul(self.scale));
+            for (axis, &k) in k.iter().enumerate() {
+                bins.add(axis, k, prim.bounds, 1);
             }
         }
     }
-    best
+
+    /// The best binned split of `bins`: `(score, axis, first bin of the right side)`.
+    fn best_split(&self, bins: &Bins) -> Option<(f64, usize, usize)> {
+        let mut best: Option<(f64, usize, usize)> = None;
+        for &axis in self.axes() {
+            let (boxes, counts) = (&bins.boxes[axis], &bins.counts[axis]);
+            // The non-empty bins, in order: only the plane just after each can win (module docs).
+            let mut filled = [0; BINS];
+            let mut count = 0;
+            for (k, &c) in counts.iter().enumerate() {
+                if c > 0 {
+                    filled[count] = k;
+                    count += 1;
+                }
+            }
+            let filled = &filled[..count];
+            // Right-to-left sweep: area and count of the filled bins j.. for every j ≥ 1.
+            let mut right = [(0.0, 0_u32); BINS];
+            let mut acc = (Aabb::EMPTY, 0);
+            for j in (1..count).rev() {
+                let k = filled[j];
+                acc = (acc.0.union(boxes[k]), acc.1 + counts[k]);
+                right[j] = (acc.0.half_area(), acc.1);
+            }
+            let mut left = (Aabb::EMPTY, 0);
+            for j in 1..count {
+                let k = filled[j - 1];
+                left = (left.0.union(boxes[k]), left.1 + counts[k]);
+                let (right_area, right_count) = right[j];
+                let score = left.0.half_area() * blocks(left.1) + right_area * blocks(right_count);
+                if best.is_none_or(|(b, _, _)| score < b) {
+                    best = Some((score, axis, k + 1));
+                }
+            }
+        }
+        best
+    }
+}
+
+/// The number of [`TriangleBlock`]s that hold `n` triangles, as the SAH counts them.
+fn blocks(n: u32) -> f64 {
+    #[expect(clippy::cast_possible_truncation, reason = "BLOCK is 4")]
+    const PER_BLOCK: u32 = BLOCK as u32;
+    f64::from(n.div_ceil(PER_BLOCK))
+}
+
+/// What becomes of a range of `prims` with this extent at this binary depth: `None` for a leaf.
+fn decide(prims: &[Prim], extent: &Extent, depth: usize) -> Option<Split> {
+    let n = prims.len();
+    if n == 1 {
+        return None;
+    }
+    if depth >= SAH_DEPTH_LIMIT {
+        return (n > MAX_LEAF_SIZE).then_some(Split::Median);
+    }
+    let binning = Binning::new(&extent.centers);
+    if binning.count == 0 {
+        // All centres coincide: no plane separates them.
+        return (n > MAX_LEAF_SIZE).then_some(Split::Middle);
+    }
+    let best = if n >= PARALLEL_BINNING {
+        let bins = prims
+            .par_chunks(BINNING_CHUNK)
+            .map(|chunk| {
+                let mut bins = Bins::EMPTY;
+                binning.bin(chunk, &mut bins);
+                bins
+            })
+            .reduce(|| Bins::EMPTY, |a, b| a.merge(&b));
+        binning.best_split(&bins)
+    } else {
+        SCRATCH.with_borrow_mut(|bins| {
+            bins.clear();
+            binning.bin(prims, bins);
+            binning.best_split(bins)
+        })
+    };
+    let (score, axis, bin) = best.expect("centres spread on an axis");
+    let leaf_cost = BLOCK_COST * blocks(u32::try_from(n).expect("triangle count fits u32"));
+    let split_cost = NODE_COST + BLOCK_COST * score / extent.bounds.half_area();
+    if n <= MAX_LEAF_SIZE && leaf_cost <= split_cost {
+        return None;
+    }
+    Some(Split::Binned {
+        axis,
+        lo: binning.lo.0[axis],
+        scale: binning.scale.0[axis],
+        bin,
+    })
 }
 
 /// Moves the entries for which `left` holds to the front (order within each side is the
-/// deterministic result of the swaps); returns how many there are.
-fn partition(order: &mut [u32], left: impl Fn(u32) -> bool) -> usize {
+/// deterministic result of the swaps); returns how many there are, and the extents of both sides.
+fn partition(prims: &mut [Prim], left: impl Fn(&Aabb) -> bool) -> (usize, Extent, Extent) {
+    let mut left_extent = Extent::EMPTY;
+    let mut right_extent = Extent::EMPTY;
     let mut first = 0;
-    let mut last = order.len();
+    let mut last = prims.len();
+    // Every entry is examined once: kept at `first`, or swapped to `last − 1`.
     while first < last {
-        if left(order[first]) {
+        let prim = prims[first];
+        if left(&prim.bounds) {
+            left_extent.add(&prim);
             first += 1;
         } else {
+            right_extent.add(&prim);
             last -= 1;
-            order.swap(first, last);
+            prims.swap(first, last);
         }
     }
-    first
+    (first, left_extent, right_extent)
 }
 
-/// Sorts the median split of `order` along the widest centre axis: entries before `len/2` have
+/// Sorts the median split of `prims` along the widest centre axis: entries before `len/2` have
 /// centres ≤ those after (ties by triangle index). Returns the split position.
-fn median_split(p: &Primitives<'_>, order: &mut [u32], centers: Aabb) -> usize {
-    let extent = centers.hi - centers.lo;
-    let axis = if extent.x >= extent.y && extent.x >= extent.z {
+fn median_split(prims: &mut [Prim], centers: &Aabb) -> usize {
+    let [x, y, z, _] = centers.hi.sub(centers.lo).0;
+    let axis = if x >= y && x >= z {
         0
-    } else if extent.y >= extent.z {
+    } else if y >= z {
         1
     } else {
         2
     };
-    let mid = order.len() / 2;
-    order.select_nth_unstable_by(mid, |&a, &b| {
-        p.centers[a as usize][axis]
-            .total_cmp(&p.centers[b as usize][axis])
-            .then(a.cmp(&b))
+    let mid = prims.len() / 2;
+    prims.select_nth_unstable_by(mid, |a, b| {
+        a.bounds.center().0[axis]
+            .total_cmp(&b.bounds.center().0[axis])
+            .then(a.id().cmp(&b.id()))
     });
     mid
-}
-
-fn build_node(p: &Primitives<'_>, order: &mut [u32], start: usize, depth: usize) -> BuildNode {
-    let mut bounds = Aabb::EMPTY;
-    let mut centers = Aabb::EMPTY;
-    for &i in order.iter() {
-        bounds = bounds.union(p.boxes[i as usize]);
-        centers.grow(p.centers[i as usize]);
-    }
-    let n = order.len();
-    let leaf = BuildNode::Leaf {
-        bounds,
-        start,
-        count: n,
-    };
-    if n == 1 {
-        return leaf;
-    }
-    let mid = if depth >= SAH_DEPTH_LIMIT {
-        if n <= MAX_LEAF_SIZE {
-            return leaf;
-        }
-        median_split(p, order, centers)
-    } else if let Some((score, axis, split)) = best_split(p, order, centers) {
-        #[expect(clippy::cast_precision_loss, reason = "counts below 2^32 are exact")]
-        let leaf_cost = TRIANGLE_COST * n as f64;
-        let split_cost = NODE_COST + TRIANGLE_COST * score / bounds.half_area();
-        if n <= MAX_LEAF_SIZE && leaf_cost <= split_cost {
-            return leaf;
-        }
-        #[expect(clippy::cast_precision_loss, reason = "BINS is 32")]
-        let scale = BINS as f64 / (centers.hi[axis] - centers.lo[axis]);
-        let lo = centers.lo[axis];
-        // The same bins as `best_split` (the same operations on the same values).
-        partition(order, |i| {
-            bin_of(p.centers[i as usize][axis], lo, scale) < split
-        })
-    } else {
-        // All centres coincide: no plane separates them.
-        if n <= MAX_LEAF_SIZE {
-            return leaf;
-        }
-        n / 2
-    };
-    let (left, right) = order.split_at_mut(mid);
-    let (left, right) = if n >= PARALLEL_THRESHOLD {
-        rayon::join(
-            || build_node(p, left, start, depth + 1),
-            || build_node(p, right, start + mid, depth + 1),
-        )
-    } else {
-        (
-            build_node(p, left, start, depth + 1),
-            build_node(p, right, start + mid, depth + 1),
-        )
-    };
-    BuildNode::Inner {
-        bounds,
-        children: Box::new([left, right]),
-    }
 }
 
 /// A 4-wide node: the boxes of up to four children, lane by lane, and what each child is.
@@ -302,84 +586,162 @@ pub(crate) struct Node4 {
     pub(crate) count: [u32; 4],
 }
 
-/// The 4-wide tree, flattened: nodes in depth-first order (root first), and its depth.
-pub(crate) struct Flattened {
-    pub(crate) nodes: Vec<Node4>,
-    pub(crate) depth: usize,
-}
-
-/// Collapses the binary tree into 4-wide nodes.
-pub(crate) fn flatten(root: &BuildNode) -> Flattened {
-    let mut nodes = Vec::new();
-    let depth = match root {
-        BuildNode::Leaf { .. } => {
-            nodes.push(node4(&[root], &[]));
-            1
-        }
-        BuildNode::Inner { children, .. } => flatten_inner(children, &mut nodes),
-    };
-    Flattened { nodes, depth }
-}
-
-/// Packs up to four children into a node; `inner` holds the node index of each inner child (in
-/// the order of the inner children in `children`).
-fn node4(children: &[&BuildNode], inner: &[u32]) -> Node4 {
-    let mut node = Node4 {
+impl Node4 {
+    const EMPTY: Self = Self {
         lo: [[f64::INFINITY; 4]; 3],
         hi: [[f64::NEG_INFINITY; 4]; 3],
         child: [u32::MAX; 4],
         count: [0; 4],
     };
-    let mut inner = inner.iter();
-    for (lane, child) in children.iter().enumerate() {
-        let bounds = child.bounds();
+
+    /// Sets `lane` to the box `bounds` and the leaf or node `child` with `count` triangles.
+    fn set(&mut self, lane: usize, bounds: &Aabb, child: usize, count: usize) {
         for axis in 0..3 {
-            node.lo[axis][lane] = bounds.lo[axis];
-            node.hi[axis][lane] = bounds.hi[axis];
+            self.lo[axis][lane] = bounds.lo.0[axis];
+            self.hi[axis][lane] = bounds.hi.0[axis];
         }
-        match child {
-            BuildNode::Leaf { start, count, .. } => {
-                node.child[lane] = u32::try_from(*start).expect("triangle count fits u32");
-                node.count[lane] = u32::try_from(*count).expect("leaf size fits u32");
-            }
-            BuildNode::Inner { .. } => {
-                node.child[lane] = *inner.next().expect("one index per inner child");
-            }
-        }
+        self.child[lane] = u32::try_from(child).expect("index fits u32");
+        self.count[lane] = u32::try_from(count).expect("leaf size fits u32");
     }
-    node
 }
 
-/// Flattens the inner node with these two children, and its subtree; returns the subtree's depth
-/// in 4-wide nodes.
-fn flatten_inner(children: &[BuildNode; 2], nodes: &mut Vec<Node4>) -> usize {
-    let mut lanes: Vec<&BuildNode> = children.iter().collect();
+/// The 4-wide tree: nodes in depth-first order (root first), and its depth.
+pub(crate) struct Tree {
+    pub(crate) nodes: Vec<Node4>,
+    pub(crate) depth: usize,
+}
+
+/// Builds the tree over `prims`, permuting them into leaf order.
+pub(crate) fn build(prims: &mut [Prim]) -> Tree {
+    if prims.is_empty() {
+        return Tree {
+            nodes: Vec::new(),
+            depth: 0,
+        };
+    }
+    let extent = prims
+        .par_chunks(BINNING_CHUNK)
+        .map(Extent::of)
+        .reduce(|| Extent::EMPTY, Extent::union);
+    let root = Range::new(prims, 0, extent, 0);
+    let mut nodes = Vec::new();
+    let depth = if root.split.is_some() {
+        subtree(root, &mut nodes)
+    } else {
+        let mut node = Node4::EMPTY;
+        node.set(0, &root.extent.bounds, 0, root.prims.len());
+        nodes.push(node);
+        1
+    };
+    Tree { nodes, depth }
+}
+
+/// Appends the 4-wide subtree of an inner range to `nodes` (its root first, at `nodes.len()`);
+/// returns its depth in 4-wide nodes.
+fn subtree(range: Range<'_>, nodes: &mut Vec<Node4>) -> usize {
+    let n = range.prims.len();
+    let mut lanes: Vec<Range<'_>> = Vec::with_capacity(4);
+    lanes.extend(range.divide());
     while lanes.len() < 4 {
-        let mut widest: Option<(usize, f64, &[BuildNode; 2])> = None;
+        let mut widest: Option<(usize, f64)> = None;
         for (k, lane) in lanes.iter().enumerate() {
-            if let BuildNode::Inner { bounds, children } = lane {
-                let area = bounds.half_area();
-                if widest.is_none_or(|(_, a, _)| area > a) {
-                    widest = Some((k, area, children));
+            if lane.split.is_some() {
+                let area = lane.extent.bounds.half_area();
+                if widest.is_none_or(|(_, a)| area > a) {
+                    widest = Some((k, area));
                 }
             }
         }
-        let Some((k, _, grandchildren)) = widest else {
+        let Some((k, _)) = widest else {
             break;
         };
-        lanes.splice(k..=k, grandchildren.iter());
+        let divided = lanes.remove(k).divide();
+        lanes.splice(k..k, divided);
     }
     let index = nodes.len();
-    // Placeholder, replaced once the children's indices are known.
-    nodes.push(node4(&[], &[]));
-    let mut inner = Vec::new();
-    let mut depth = 0;
-    for lane in &lanes {
-        if let BuildNode::Inner { children, .. } = lane {
-            inner.push(u32::try_from(nodes.len()).expect("node count fits u32"));
-            depth = depth.max(flatten_inner(children, nodes));
+    let mut node = Node4::EMPTY;
+    for (lane, range) in lanes.iter().enumerate() {
+        if range.split.is_none() {
+            node.set(lane, &range.extent.bounds, range.start, range.prims.len());
         }
     }
-    nodes[index] = node4(&lanes, &inner);
+    nodes.push(node);
+    let mut depth = 0;
+    if n >= PARALLEL_THRESHOLD {
+        // Each inner child's subtree in a list of its own (indices relative to its root),
+        // appended in lane order: the layout of the sequential build.
+        let built: Vec<(usize, Aabb, Vec<Node4>, usize)> = lanes
+            .into_par_iter()
+            .enumerate()
+            .filter(|(_, range)| range.split.is_some())
+            .map(|(lane, range)| {
+                let bounds = range.extent.bounds;
+                let mut own = Vec::new();
+                let depth = subtree(range, &mut own);
+                (lane, bounds, own, depth)
+            })
+            .collect();
+        for (lane, bounds, own, own_depth) in built {
+            let base = nodes.len();
+            nodes[index].set(lane, &bounds, base, 0);
+            let offset = u32::try_from(base).expect("node count fits u32");
+            nodes.extend(own.into_iter().map(|mut node| {
+                for k in 0..4 {
+                    if node.count[k] == 0 && node.child[k] != u32::MAX {
+                        node.child[k] += offset;
+                    }
+                }
+                node
+            }));
+            depth = depth.max(own_depth);
+        }
+    } else {
+        for (lane, range) in lanes.into_iter().enumerate() {
+            if range.split.is_some() {
+                let (bounds, child) = (range.extent.bounds, nodes.len());
+                nodes[index].set(lane, &bounds, child, 0);
+                depth = depth.max(subtree(range, nodes));
+            }
+        }
+    }
     depth + 1
+}
+
+/// Stores the leaves' triangles in blocks of [`BLOCK`], in the order of the leaves in `nodes`
+/// (depth first, lanes in order), and points each leaf lane at its first block. `prims` is the
+/// build's leaf order; `vertices` gives a triangle's vertices from its index.
+pub(crate) fn leaf_blocks(
+    nodes: &mut [Node4],
+    prims: &[Prim],
+    vertices: impl Fn(u32) -> TriangleVertices + Sync,
+) -> Vec<TriangleBlock> {
+    // (first triangle in `prims`, triangle count) of every leaf, in block order.
+    let mut leaves = Vec::new();
+    let mut next = 0;
+    for node in nodes.iter_mut() {
+        for lane in 0..4 {
+            let count = node.count[lane] as usize;
+            if count > 0 {
+                leaves.push((node.child[lane] as usize, count));
+                node.child[lane] = u32::try_from(next).expect("block count fits u32");
+                next += count.div_ceil(BLOCK);
+            }
+        }
+    }
+    let vertices = &vertices;
+    leaves
+        .par_iter()
+        .flat_map_iter(|&(start, count)| {
+            (0..count.div_ceil(BLOCK)).map(move |b| {
+                // Spare lanes repeat the leaf's last triangle.
+                let slot = |k: usize| &prims[start + (b * BLOCK + k).min(count - 1)];
+                let triangles: [TriangleVertices; BLOCK] =
+                    std::array::from_fn(|k| vertices(slot(k).id()));
+                TriangleBlock {
+                    p: std::array::from_fn(|c| std::array::from_fn(|k| triangles[k][c])),
+                    id: std::array::from_fn(|k| slot(k).id()),
+                }
+            })
+        })
+        .collect()
 }

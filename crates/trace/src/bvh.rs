@@ -5,7 +5,10 @@
 //! interval is computed for all four child boxes ([`PreparedRay::slab`], lane by lane); children
 //! whose interval meets `[t_min, t_best]` are pushed farthest first, so the nearest is visited
 //! next (closest hit) — any order serves the any-hit query, which stops at the first hit. A popped
-//! entry whose entry parameter exceeds the current best is skipped.
+//! entry whose entry parameter exceeds the current best is skipped. A leaf's triangles are tested
+//! four at a time (`triangle::intersect_block`, the same bits as one at a time). The batch queries
+//! trace runs of coherent rays together (the `packet` module), each ray keeping its own best and
+//! its own tests, so that the argument below holds for each ray of a packet.
 //!
 //! # Why the traversal finds what brute force finds
 //! Ize, "Robust BVH Ray Traversal", JCGT 2(2), 2013 (<https://jcgt.org/published/0002/02/02/>),
@@ -36,15 +39,18 @@
 //! With ties broken by triangle index, the result is a function of the ray and the mesh alone:
 //! the same as a loop over all triangles ([`Bvh::intersect_triangle`]), whatever the tree.
 
+mod packet;
+
 use std::fmt;
 
 use glam::DVec3;
 use rayon::prelude::*;
 
-use crate::build::{self, Aabb, Node4};
+use crate::build::{self, Node4, Prim};
 use crate::error::TraceError;
 use crate::ray::{Hit, MAX_COORDINATE, PreparedRay, Ray};
-use crate::triangle::{self, TriangleVertices};
+use crate::triangle::{self, TriangleBlock, TriangleVertices};
+use packet::{PACKET, Packet, PacketStack};
 
 /// Rays per parallel work item in the batch queries. The split of a batch into work items depends
 /// on this constant only; each ray's result depends on nothing but the ray, so the output is
@@ -107,12 +113,11 @@ pub struct BvhStats {
 pub struct Bvh {
     positions: Vec<DVec3>,
     triangles: Vec<[u32; 3]>,
-    /// 4-wide nodes, depth first, root first; empty without triangles.
+    /// 4-wide nodes, depth first, root first; empty without triangles. A leaf lane's `child` is
+    /// its first block.
     nodes: Vec<Node4>,
-    /// The stored triangles' vertices, in leaf order.
-    stored: Vec<TriangleVertices>,
-    /// The index (into `triangles`) of each stored triangle.
-    ids: Vec<u32>,
+    /// The stored triangles in blocks of four, leaf by leaf.
+    blocks: Vec<TriangleBlock>,
     /// Indices of the zero-area triangles, ascending.
     degenerate: Vec<u32>,
     /// The largest absolute coordinate of a stored triangle's vertex.
@@ -158,9 +163,9 @@ impl Bvh {
     /// Builds the hierarchy over `triangles` (index triples into `positions`). The inputs are
     /// copied; indices of triangles in [`Hit`]s refer to `triangles`.
     ///
-    /// Build: binned SAH with 32 bins per axis, leaves of at most 8 triangles, a binary tree
-    /// collapsed to 4 children per node (details in the `build` module). Parallel (rayon) for
-    /// large nodes; the tree is identical for any thread count.
+    /// Build: binned SAH with 32 bins per axis counting blocks of four triangles, leaves of at most
+    /// 8 triangles, a binary tree collapsed to 4 children per node (details in the `build`
+    /// module). Parallel (rayon) for large nodes; the tree is identical for any thread count.
     ///
     /// # Errors
     /// [`TraceError::TooManyTriangles`] beyond `u32::MAX` triangles;
@@ -213,39 +218,31 @@ impl Bvh {
                 order.push(i);
             }
         }
-        let boxes: Vec<Aabb> = triangles
-            .iter()
-            .map(|t| {
-                let [a, b, c] = corners(t);
-                Aabb {
-                    lo: a.min(b).min(c),
-                    hi: a.max(b).max(c),
-                }
+        let mut prims: Vec<Prim> = order
+            .par_iter()
+            .map(|&id| {
+                let [a, b, c] = corners(&triangles[id as usize]);
+                Prim::new(a.min(b).min(c), a.max(b).max(c), id)
             })
             .collect();
-        let mut magnitude: f64 = 0.0;
-        for &i in &order {
-            let b = boxes[i as usize];
-            magnitude = magnitude.max(b.lo.abs().max_element().max(b.hi.abs().max_element()));
-        }
-        let (nodes, depth) = match build::build_binary(&boxes, &mut order) {
-            Some(root) => {
-                let flat = build::flatten(&root);
-                (flat.nodes, flat.depth)
-            }
-            None => (Vec::new(), 0),
-        };
+        // The largest of maxima: exact, so the same for any split.
+        let magnitude = order
+            .par_iter()
+            .map(|&i| {
+                let [a, b, c] = corners(&triangles[i as usize]);
+                a.abs().max(b.abs()).max(c.abs()).max_element()
+            })
+            .reduce(|| 0.0, f64::max);
+        let build::Tree { mut nodes, depth } = build::build(&mut prims);
         debug_assert!(depth <= build::MAX_DEPTH);
-        let stored = order
-            .iter()
-            .map(|&i| vertices(corners(&triangles[i as usize])))
-            .collect();
+        let blocks = build::leaf_blocks(&mut nodes, &prims, |id| {
+            vertices(corners(&triangles[id as usize]))
+        });
         Ok(Self {
             positions: positions.to_vec(),
             triangles: triangles.to_vec(),
             nodes,
-            stored,
-            ids: order,
+            blocks,
             degenerate,
             magnitude,
             depth,
@@ -409,48 +406,77 @@ impl Bvh {
     }
 
     /// [`Bvh::closest_hit`] for every ray, in parallel (rayon, [`RAY_CHUNK`] rays per work item);
-    /// the output is identical for any thread count.
+    /// the output is identical for any thread count. Runs of consecutive rays that share their
+    /// direction signs are traced together, a few at a time (the `packet` module): order a
+    /// coherent batch so that neighbouring rays are next to each other (a shadow map's rays row by
+    /// row, say). Every answer is the single query's, bit for bit, whatever the order.
     ///
     /// # Panics
     /// If a ray is invalid (the message names its index) or `t_min` or `t_max` is NaN.
     #[must_use]
     pub fn closest_hits(&self, rays: &[Ray], t_min: f64, t_max: f64) -> Vec<Option<Hit>> {
         check_range(t_min, t_max);
-        self.batch(rays, |ray, stack| {
-            self.closest_prepared(ray, t_min, t_max, stack)
-        })
+        self.batch(
+            rays,
+            |ray, stack| self.closest_prepared(ray, t_min, t_max, stack),
+            |rays, packet, stack, out| self.closest_packet(rays, packet, t_min, t_max, stack, out),
+        )
     }
 
     /// [`Bvh::occluded`] for every ray, in parallel (rayon, [`RAY_CHUNK`] rays per work item); the
-    /// output is identical for any thread count.
+    /// output is identical for any thread count. Coherent runs of rays are traced together, as in
+    /// [`Bvh::closest_hits`].
     ///
     /// # Panics
     /// If a ray is invalid (the message names its index) or `t_min` or `t_max` is NaN.
     #[must_use]
     pub fn occluded_all(&self, rays: &[Ray], t_min: f64, t_max: f64) -> Vec<bool> {
         check_range(t_min, t_max);
-        self.batch(rays, |ray, stack| {
-            self.occluded_prepared(ray, t_min, t_max, stack)
-        })
+        self.batch(
+            rays,
+            |ray, stack| self.occluded_prepared(ray, t_min, t_max, stack),
+            |rays, packet, stack, out| self.occluded_packet(rays, packet, t_min, t_max, stack, out),
+        )
     }
 
-    fn batch<T: Send>(
+    /// Casts `rays` in parallel work items of [`RAY_CHUNK`] rays, each in packets of [`PACKET`]
+    /// consecutive rays where they form one (`packet`), one by one otherwise (`single`); each
+    /// answer is written in its ray's place.
+    fn batch<T: Clone + Default + Send>(
         &self,
         rays: &[Ray],
-        query: impl Fn(&PreparedRay, &mut Stack) -> T + Sync,
+        single: impl Fn(&PreparedRay, &mut Stack) -> T + Sync,
+        packet: impl Fn(&[PreparedRay], &Packet, &mut PacketStack, &mut [T]) + Sync,
     ) -> Vec<T> {
-        rays.par_chunks(RAY_CHUNK)
+        let mut out = vec![T::default(); rays.len()];
+        out.par_chunks_mut(RAY_CHUNK)
+            .zip(rays.par_chunks(RAY_CHUNK))
             .enumerate()
-            .flat_map_iter(|(chunk, rays)| {
+            .for_each(|(chunk, (out, rays))| {
+                // All of the work item's rays first: their loads overlap.
+                let prepared: Vec<PreparedRay> = rays
+                    .iter()
+                    .enumerate()
+                    .map(|(i, ray)| {
+                        PreparedRay::new(ray, self.magnitude).unwrap_or_else(|e| {
+                            panic!("invalid ray {}: {e}", chunk * RAY_CHUNK + i)
+                        })
+                    })
+                    .collect();
                 let mut stack = new_stack();
-                let query = &query;
-                rays.iter().enumerate().map(move |(i, ray)| {
-                    let prepared = PreparedRay::new(ray, self.magnitude)
-                        .unwrap_or_else(|e| panic!("invalid ray {}: {e}", chunk * RAY_CHUNK + i));
-                    query(&prepared, &mut stack)
-                })
-            })
-            .collect()
+                let mut packet_stack = PacketStack::new();
+                let mut set_up = Packet::default();
+                for (out, rays) in out.chunks_mut(PACKET).zip(prepared.chunks(PACKET)) {
+                    if set_up.set(rays) {
+                        packet(rays, &set_up, &mut packet_stack, out);
+                    } else {
+                        for (out, ray) in out.iter_mut().zip(rays) {
+                            *out = single(ray, &mut stack);
+                        }
+                    }
+                }
+            });
+        out
     }
 
     fn closest_prepared(
@@ -479,6 +505,13 @@ impl Bvh {
             1 => self.occluded_kz::<1>(ray, t_min, t_max, stack),
             _ => self.occluded_kz::<2>(ray, t_min, t_max, stack),
         }
+    }
+
+    /// The blocks of the leaf whose first block is `first` and which holds `count` triangles.
+    #[inline(always)]
+    fn leaf(&self, first: u32, count: u32) -> &[TriangleBlock] {
+        let first = first as usize;
+        &self.blocks[first..first + (count as usize).div_ceil(triangle::BLOCK)]
     }
 
     /// The parameter intervals of a node's four child boxes, clipped to `[t_lo, t_hi]`: lanes
@@ -539,17 +572,16 @@ impl Bvh {
                 continue;
             }
             if entry.count > 0 {
-                let start = entry.child as usize;
-                for slot in start..start + entry.count as usize {
-                    let Some((t, u, v)) = triangle::intersect::<KZ>(ray, &self.stored[slot]) else {
-                        continue;
-                    };
-                    let id = self.ids[slot];
-                    if t_min < t && (t < best_t || (t == best_t && id < best_id)) {
-                        best_t = t;
-                        best_id = id;
-                        best_uv = Some((u, v));
-                    }
+                for block in self.leaf(entry.child, entry.count) {
+                    triangle::intersect_block::<KZ>(ray, block, |k, t, u, v| {
+                        let id = block.id[k];
+                        if t_min < t && (t < best_t || (t == best_t && id < best_id)) {
+                            best_t = t;
+                            best_id = id;
+                            best_uv = Some((u, v));
+                        }
+                        false
+                    });
                 }
                 continue;
             }
@@ -603,12 +635,10 @@ impl Bvh {
         });
         while let Some(entry) = stack.pop() {
             if entry.count > 0 {
-                let start = entry.child as usize;
-                for slot in start..start + entry.count as usize {
-                    if let Some((t, _, _)) = triangle::intersect::<KZ>(ray, &self.stored[slot])
-                        && t_min < t
-                        && t < t_max
-                    {
+                for block in self.leaf(entry.child, entry.count) {
+                    if triangle::intersect_block::<KZ>(ray, block, |_, t, _, _| {
+                        t_min < t && t < t_max
+                    }) {
                         return true;
                     }
                 }

@@ -10,12 +10,14 @@
 //!   (an FMA-exact fallback when one rounds to zero). A ray through a shared edge or vertex hits
 //!   a triangle there; it can only graze a silhouette, never slip between two triangles.
 //! * **[`Bvh`]**: binned SAH (32 bins, leaves of at most 8 triangles), collapsed to 4 children per
-//!   node; triangles stored in leaf order, nine f64 each. Boxes are padded per ray by an amount
-//!   that provably covers the rounding of both the triangle test and the slab test (Ize's robust
-//!   traversal, JCGT 2013, done in space), so the tree returns exactly what a loop over all
-//!   triangles returns.
+//!   node; triangles stored leaf by leaf in blocks of four, coordinates side by side, which a ray
+//!   tests four at a time. Boxes are padded per ray by an amount that provably covers the rounding
+//!   of both the triangle test and the slab test (Ize's robust traversal, JCGT 2013, done in
+//!   space), so the tree returns exactly what a loop over all triangles returns.
 //! * **Queries**: [`Bvh::closest_hit`], [`Bvh::occluded`], and their parallel batch forms
-//!   [`Bvh::closest_hits`] and [`Bvh::occluded_all`] (rayon).
+//!   [`Bvh::closest_hits`] and [`Bvh::occluded_all`] (rayon), which trace runs of coherent rays
+//!   in packets (Wald, Boulos & Shirley 2007: one box test per packet by interval arithmetic,
+//!   bounding each ray's own rounded test), each ray with its own answer.
 //! * **[`offset_origin`]**: moves a surface point off its triangle's plane by an amount proven to
 //!   exceed its rounding error (after Wächter & Binder, Ray Tracing Gems ch. 6), for rays leaving
 //!   the surface.

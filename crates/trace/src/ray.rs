@@ -138,6 +138,7 @@ impl PreparedRay {
     ///
     /// # Errors
     /// As [`Ray::validate`].
+    #[inline]
     pub(crate) fn new(ray: &Ray, magnitude: f64) -> Result<Self, TraceError> {
         ray.validate()?;
         let o = ray.origin.to_array();

@@ -39,7 +39,7 @@ fn coplanar(count: usize, rng: &mut Rng) -> (Mesh, [DVec3; 2]) {
 }
 
 /// A test mesh of one of five kinds, scaled by `scale` and moved by `offset·scale·shift`.
-fn mesh(kind: u8, seed: u64, scale: f64, shift: f64) -> Mesh {
+pub(crate) fn mesh(kind: u8, seed: u64, scale: f64, shift: f64) -> Mesh {
     let mut rng = Rng::new(seed);
     let offset = rng.cube_point() * shift;
     let base = match kind {

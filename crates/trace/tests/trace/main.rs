@@ -10,6 +10,9 @@
 //!   even exactly through its vertices and edge midpoints;
 //! * `semantics` — the open interval, the tie rule, back faces, rays in a triangle's plane,
 //!   zero-area triangles, the empty mesh, hit points, and the clamp of grazing hits;
+//! * `packets` — batches of coherent rays, which the batch queries trace in packets, give the
+//!   single-ray and brute-force answers: at vertices, edge midpoints, along and beside shared
+//!   edges, through zero-area triangles, and a dense grid of parallel rays;
 //! * `determinism` — the same tree and the same bits for 1, 2 and 8 threads;
 //! * `offset` — offset origins lie strictly on the intended side (exact `orient3d`), at
 //!   magnitudes 10⁻³ to 10⁶, and rays from them miss their own triangle;
@@ -20,6 +23,7 @@ mod determinism;
 mod errors;
 mod exact;
 mod offset;
+mod packets;
 mod semantics;
 mod support;
 mod watertight;
