@@ -30,10 +30,11 @@
 //! a spare lane holding the triangle's index), 64 bytes, on which a union or a centre is a couple
 //! of AVX instructions. Partitioning a node gathers the bounds and centre bounds of both sides in
 //! the same pass, so no pass is spent on a node's bounds. A thread's bins are reused from node to
-//! node (only their counts are cleared). Binning a node of at least [`PARALLEL_BINNING`]
-//! triangles is split into chunks of [`BINNING_CHUNK`] binned in parallel; bins combine by min,
-//! max and integer addition, which are exact, so the bins — and the tree — are the same for any
-//! split and thread count.
+//! node: a bit mask per axis records the non-empty bins, which lists the planes to score and the
+//! bins to empty again. Binning a node of at least [`PARALLEL_BINNING`] triangles is split into
+//! chunks of [`BINNING_CHUNK`] binned in parallel; bins combine by min, max and integer addition,
+//! which are exact, so the bins — and the tree — are the same for any split and thread count. The
+//! leaves' blocks are written in parallel, each in its place.
 //!
 //! # Collapse to four children
 //! Each binary inner node takes the place of a 4-wide node: while it has fewer than four
@@ -56,8 +57,9 @@ use rayon::prelude::*;
 
 use crate::triangle::{BLOCK, TriangleBlock, TriangleVertices};
 
-/// Bins per axis in the binned SAH.
+/// Bins per axis in the binned SAH (at most 32: a node's non-empty bins are the bits of a `u32`).
 const BINS: usize = 32;
+const _: () = assert!(BINS <= 32);
 /// The index of the last bin, as an f64.
 #[expect(clippy::cast_precision_loss, reason = "BINS is 32")]
 const LAST_BIN: f64 = (BINS - 1) as f64;
@@ -344,12 +346,13 @@ fn bin_indices(t: Lanes) -> [usize; 3] {
 }
 
 /// Per axis and bin, the union of the boxes of the triangles whose centres fall in it, and their
-/// number. A bin's box is meaningful only when its count is not zero: clearing the bins clears the
-/// counts, and a bin's first triangle sets its box.
+/// number (the empty box and 0 for an empty bin).
 #[derive(Clone)]
 struct Bins {
     boxes: [[Aabb; BINS]; 3],
     counts: [[u32; BINS]; 3],
+    /// Per axis, bit `k` set when bin `k` is not empty.
+    filled: [u32; 3],
 }
 
 thread_local! {
@@ -362,34 +365,47 @@ impl Bins {
     const EMPTY: Self = Self {
         boxes: [[Aabb::EMPTY; BINS]; 3],
         counts: [[0; BINS]; 3],
+        filled: [0; 3],
     };
 
+    /// Empties the bins that are not empty.
     fn clear(&mut self) {
-        self.counts = [[0; BINS]; 3];
+        for axis in 0..3 {
+            for k in bits(self.filled[axis]) {
+                self.boxes[axis][k] = Aabb::EMPTY;
+                self.counts[axis][k] = 0;
+            }
+        }
+        self.filled = [0; 3];
     }
 
     #[inline(always)]
     fn add(&mut self, axis: usize, k: usize, bounds: Aabb, count: u32) {
-        let bin = &mut self.boxes[axis][k];
-        *bin = if self.counts[axis][k] == 0 {
-            bounds
-        } else {
-            bin.union(bounds)
-        };
+        self.boxes[axis][k] = self.boxes[axis][k].union(bounds);
         self.counts[axis][k] += count;
+        self.filled[axis] |= 1 << k;
     }
 
     /// Both bin sets together (exact: min, max and integer addition).
     fn merge(mut self, other: &Self) -> Self {
         for axis in 0..3 {
-            for k in 0..BINS {
-                if other.counts[axis][k] > 0 {
-                    self.add(axis, k, other.boxes[axis][k], other.counts[axis][k]);
-                }
+            for k in bits(other.filled[axis]) {
+                self.add(axis, k, other.boxes[axis][k], other.counts[axis][k]);
             }
         }
         self
     }
+}
+
+/// The positions of the set bits of `mask`, in increasing order.
+fn bits(mut mask: u32) -> impl Iterator<Item = usize> {
+    std::iter::from_fn(move || {
+        (mask != 0).then(|| {
+            let k = mask.trailing_zeros() as usize;
+            mask &= mask - 1;
+            k
+        })
+    })
 }
 
 /// The binning of one node: the axes along which its centres spread, and per axis the origin and
@@ -445,11 +461,9 @@ impl Binning {
             // The non-empty bins, in order: only the plane just after each can win (module docs).
             let mut filled = [0; BINS];
             let mut count = 0;
-            for (k, &c) in counts.iter().enumerate() {
-                if c > 0 {
-                    filled[count] = k;
-                    count += 1;
-                }
+            for k in bits(bins.filled[axis]) {
+                filled[count] = k;
+                count += 1;
             }
             let filled = &filled[..count];
             // Right-to-left sweep: area and count of the filled bins j.. for every j ≥ 1.
@@ -715,33 +729,30 @@ pub(crate) fn leaf_blocks(
     prims: &[Prim],
     vertices: impl Fn(u32) -> TriangleVertices + Sync,
 ) -> Vec<TriangleBlock> {
-    // (first triangle in `prims`, triangle count) of every leaf, in block order.
-    let mut leaves = Vec::new();
-    let mut next = 0;
+    // (first triangle in `prims`, triangle count, block within the leaf) of every block.
+    let mut work = Vec::new();
     for node in nodes.iter_mut() {
         for lane in 0..4 {
             let count = node.count[lane] as usize;
             if count > 0 {
-                leaves.push((node.child[lane] as usize, count));
-                node.child[lane] = u32::try_from(next).expect("block count fits u32");
-                next += count.div_ceil(BLOCK);
+                let start = node.child[lane] as usize;
+                node.child[lane] = u32::try_from(work.len()).expect("block count fits u32");
+                work.extend((0..count.div_ceil(BLOCK)).map(|b| (start, count, b)));
             }
         }
     }
-    let vertices = &vertices;
-    leaves
-        .par_iter()
-        .flat_map_iter(|&(start, count)| {
-            (0..count.div_ceil(BLOCK)).map(move |b| {
-                // Spare lanes repeat the leaf's last triangle.
-                let slot = |k: usize| &prims[start + (b * BLOCK + k).min(count - 1)];
-                let triangles: [TriangleVertices; BLOCK] =
-                    std::array::from_fn(|k| vertices(slot(k).id()));
-                TriangleBlock {
-                    p: std::array::from_fn(|c| std::array::from_fn(|k| triangles[k][c])),
-                    id: std::array::from_fn(|k| slot(k).id()),
-                }
-            })
+    let mut blocks = Vec::new();
+    work.par_iter()
+        .map(|&(start, count, b)| {
+            // Spare lanes repeat the leaf's last triangle.
+            let slot = |k: usize| &prims[start + (b * BLOCK + k).min(count - 1)];
+            let triangles: [TriangleVertices; BLOCK] =
+                std::array::from_fn(|k| vertices(slot(k).id()));
+            TriangleBlock {
+                p: std::array::from_fn(|c| std::array::from_fn(|k| triangles[k][c])),
+                id: std::array::from_fn(|k| slot(k).id()),
+            }
         })
-        .collect()
+        .collect_into_vec(&mut blocks);
+    blocks
 }

@@ -150,6 +150,26 @@ fn vertices(p: [DVec3; 3]) -> TriangleVertices {
     ]
 }
 
+/// The bounding box `(lo, hi)` of the tree's root node's children; `None` without nodes.
+fn root_bounds(nodes: &[Node4]) -> Option<(DVec3, DVec3)> {
+    let root = nodes.first()?;
+    let mut lo = DVec3::INFINITY;
+    let mut hi = DVec3::NEG_INFINITY;
+    for lane in 0..4 {
+        lo = lo.min(DVec3::new(
+            root.lo[0][lane],
+            root.lo[1][lane],
+            root.lo[2][lane],
+        ));
+        hi = hi.max(DVec3::new(
+            root.hi[0][lane],
+            root.hi[1][lane],
+            root.hi[2][lane],
+        ));
+    }
+    Some((lo, hi))
+}
+
 /// Panics with the error's message if `t_min` or `t_max` is NaN.
 fn check_range(t_min: f64, t_max: f64) {
     for (parameter, value) in [("t_min", t_min), ("t_max", t_max)] {
@@ -178,29 +198,33 @@ impl Bvh {
                 count: triangles.len(),
             });
         }
-        for (vertex, p) in positions.iter().enumerate() {
-            if !p.is_finite() {
-                return Err(TraceError::NonFinitePosition { vertex });
-            }
-            let largest = p.abs().max_element();
-            if largest > MAX_COORDINATE {
-                return Err(TraceError::PositionOutOfRange {
+        let out_of_range = |p: &DVec3| !p.is_finite() || p.abs().max_element() > MAX_COORDINATE;
+        if let Some(vertex) = positions.par_iter().position_first(out_of_range) {
+            let p = positions[vertex];
+            return Err(if p.is_finite() {
+                TraceError::PositionOutOfRange {
                     vertex,
-                    value: largest,
-                });
-            }
-        }
-        for (triangle, corners) in triangles.iter().enumerate() {
-            for (corner, &vertex) in corners.iter().enumerate() {
-                if vertex as usize >= positions.len() {
-                    return Err(TraceError::IndexOutOfRange {
-                        triangle,
-                        corner,
-                        vertex,
-                        vertex_count: positions.len(),
-                    });
+                    value: p.abs().max_element(),
                 }
-            }
+            } else {
+                TraceError::NonFinitePosition { vertex }
+            });
+        }
+        let bad_index = |vertex: &u32| *vertex as usize >= positions.len();
+        if let Some(triangle) = triangles
+            .par_iter()
+            .position_first(|corners| corners.iter().any(bad_index))
+        {
+            let corner = triangles[triangle]
+                .iter()
+                .position(bad_index)
+                .expect("a bad corner");
+            return Err(TraceError::IndexOutOfRange {
+                triangle,
+                corner,
+                vertex: triangles[triangle][corner],
+                vertex_count: positions.len(),
+            });
         }
         let corners = |t: &[u32; 3]| t.map(|v| positions[v as usize]);
         let flags: Vec<bool> = triangles
@@ -225,15 +249,11 @@ impl Bvh {
                 Prim::new(a.min(b).min(c), a.max(b).max(c), id)
             })
             .collect();
-        // The largest of maxima: exact, so the same for any split.
-        let magnitude = order
-            .par_iter()
-            .map(|&i| {
-                let [a, b, c] = corners(&triangles[i as usize]);
-                a.abs().max(b.abs()).max(c.abs()).max_element()
-            })
-            .reduce(|| 0.0, f64::max);
         let build::Tree { mut nodes, depth } = build::build(&mut prims);
+        // The root's box holds every stored vertex and is bounded by them: its largest absolute
+        // coordinate is theirs.
+        let magnitude =
+            root_bounds(&nodes).map_or(0.0, |(lo, hi)| lo.abs().max(hi.abs()).max_element());
         debug_assert!(depth <= build::MAX_DEPTH);
         let blocks = build::leaf_blocks(&mut nodes, &prims, |id| {
             vertices(corners(&triangles[id as usize]))
@@ -272,22 +292,7 @@ impl Bvh {
     /// The bounding box `(lo, hi)` of the stored triangles; `None` when there is none.
     #[must_use]
     pub fn bounds(&self) -> Option<(DVec3, DVec3)> {
-        let root = self.nodes.first()?;
-        let mut lo = DVec3::INFINITY;
-        let mut hi = DVec3::NEG_INFINITY;
-        for lane in 0..4 {
-            lo = lo.min(DVec3::new(
-                root.lo[0][lane],
-                root.lo[1][lane],
-                root.lo[2][lane],
-            ));
-            hi = hi.max(DVec3::new(
-                root.hi[0][lane],
-                root.hi[1][lane],
-                root.hi[2][lane],
-            ));
-        }
-        Some((lo, hi))
+        root_bounds(&self.nodes)
     }
 
     /// The shape of the tree.
