@@ -1,16 +1,18 @@
 //! Criterion benchmarks of the BVH: build time, and rays per second for closest-hit and any-hit
-//! queries with coherent and random rays, on 1 and 2 threads.
+//! queries with coherent and random rays: the batch queries on 1 and 2 threads, and one ray at a
+//! time (`closest_hit`, `occluded` in a loop) on 1 thread.
 //!
 //! Meshes: the Stanford bunny (`data/meshes/bunny.obj`, 69 666 triangles) and, when present, the
 //! dragon (`data/meshes/dragon.obj`, 871 414 triangles; made by `data/meshes/fetch-dragon.sh`,
 //! reported as absent otherwise). They are read by the small OBJ reader below (`v` and `f` only),
 //! so the benchmark depends on nothing but this crate.
 //!
-//! Rays (65 536 per batch, fixed by a SplitMix64 seed):
+//! Rays (fixed by a SplitMix64 seed):
 //! - *coherent*: a 256 × 256 orthographic grid over the mesh's bounding sphere, all parallel to
-//!   one oblique direction, as a directional light's shadow map casts them;
+//!   one oblique direction, as a directional light's shadow map casts them (65 536 rays);
+//! - *grid2048*: the same at 2048 × 2048, a full-size shadow map (4 194 304 rays, row by row);
 //! - *random*: from uniform points on a sphere of twice the bounding radius toward uniform points
-//!   in the bounding box: every ray starts outside and most cross the mesh.
+//!   in the bounding box: every ray starts outside and most cross the mesh (65 536 rays).
 //!
 //! Run with `cargo bench -p shadowlab-trace`. The side-by-side run against Intel Embree on larger
 //! ray sets (the same random rays among them) is `benches/embree.sh`; docs/benchmarks.md ("Ray
@@ -122,31 +124,34 @@ impl SplitMix64 {
     }
 }
 
+/// Side of the coherent grid, and the number of random rays (its square).
 const GRID: usize = 256;
+/// Side of the shadow-map-sized grid.
+const MAP_GRID: usize = 2048;
 
-/// The coherent batch: a `GRID × GRID` orthographic grid of parallel rays.
-fn coherent_rays(lo: DVec3, hi: DVec3) -> Vec<Ray> {
+/// A `side × side` orthographic grid of parallel rays, row by row.
+fn grid_rays(lo: DVec3, hi: DVec3, side: usize) -> Vec<Ray> {
     let center = (lo + hi) * 0.5;
     let radius = (hi - lo).length() * 0.5;
     let direction = DVec3::new(-0.3, -1.0, -0.45).normalize();
-    let side = direction.cross(DVec3::Z).normalize();
-    let up = side.cross(direction);
-    let mut rays = Vec::with_capacity(GRID * GRID);
-    for j in 0..GRID {
-        for i in 0..GRID {
+    let across = direction.cross(DVec3::Z).normalize();
+    let up = across.cross(direction);
+    let mut rays = Vec::with_capacity(side * side);
+    for j in 0..side {
+        for i in 0..side {
             #[expect(clippy::cast_precision_loss, reason = "grid indices are small")]
             let (x, y) = (
-                (i as f64 + 0.5) / GRID as f64 * 2.0 - 1.0,
-                (j as f64 + 0.5) / GRID as f64 * 2.0 - 1.0,
+                (i as f64 + 0.5) / side as f64 * 2.0 - 1.0,
+                (j as f64 + 0.5) / side as f64 * 2.0 - 1.0,
             );
-            let origin = center - direction * (2.0 * radius) + (side * x + up * y) * radius;
+            let origin = center - direction * (2.0 * radius) + (across * x + up * y) * radius;
             rays.push(Ray::new(origin, direction).expect("valid ray"));
         }
     }
     rays
 }
 
-/// The random batch (seed 0x7ACE_0001).
+/// The random batch (seed 0x7ACE_0001): `GRID²` rays.
 fn random_rays(lo: DVec3, hi: DVec3) -> Vec<Ray> {
     let mut rng = SplitMix64(0x7ACE_0001);
     let center = (lo + hi) * 0.5;
@@ -191,7 +196,8 @@ fn queries(c: &mut Criterion) {
         let (lo, hi) = bvh.bounds().expect("triangles");
         eprintln!("{name}: {:?}", bvh.stats());
         for (kind, rays) in [
-            ("coherent", coherent_rays(lo, hi)),
+            ("coherent", grid_rays(lo, hi, GRID)),
+            ("grid2048", grid_rays(lo, hi, MAP_GRID)),
             ("random", random_rays(lo, hi)),
         ] {
             let hits = bvh
@@ -201,28 +207,44 @@ fn queries(c: &mut Criterion) {
                 .count();
             eprintln!("{name}/{kind}: {hits} of {} rays hit", rays.len());
             group.throughput(Throughput::Elements(rays.len() as u64));
+            let id = |query: &str, threads: usize| {
+                BenchmarkId::new(
+                    format!("{name}/{kind}/{query}"),
+                    format!("{threads}-threads"),
+                )
+            };
             for threads in [1, 2] {
                 let pool = rayon::ThreadPoolBuilder::new()
                     .num_threads(threads)
                     .build()
                     .expect("thread pool");
-                let id = |query: &str| {
-                    BenchmarkId::new(
-                        format!("{name}/{kind}/{query}"),
-                        format!("{threads}-threads"),
-                    )
-                };
-                group.bench_function(id("closest"), |b| {
+                group.bench_function(id("closest", threads), |b| {
                     b.iter(|| {
                         pool.install(|| bvh.closest_hits(black_box(&rays), 0.0, f64::INFINITY))
                     });
                 });
-                group.bench_function(id("occluded"), |b| {
+                group.bench_function(id("occluded", threads), |b| {
                     b.iter(|| {
                         pool.install(|| bvh.occluded_all(black_box(&rays), 0.0, f64::INFINITY))
                     });
                 });
             }
+            group.bench_function(id("closest-single", 1), |b| {
+                b.iter(|| {
+                    black_box(&rays)
+                        .iter()
+                        .filter(|ray| bvh.closest_hit(ray, 0.0, f64::INFINITY).is_some())
+                        .count()
+                });
+            });
+            group.bench_function(id("occluded-single", 1), |b| {
+                b.iter(|| {
+                    black_box(&rays)
+                        .iter()
+                        .filter(|ray| bvh.occluded(ray, 0.0, f64::INFINITY))
+                        .count()
+                });
+            });
         }
     }
     group.finish();

@@ -4,7 +4,8 @@
 //! A stack of `(child, triangle count, entry parameter)`. At a 4-wide node the ray's parameter
 //! interval is computed for all four child boxes ([`PreparedRay::slab`], lane by lane); children
 //! whose interval meets `[t_min, t_best]` are pushed farthest first, so the nearest is visited
-//! next (closest hit) — any order serves the any-hit query, which stops at the first hit. A popped
+//! next (closest hit; one or two entered children, the common cases, without sorting) — any
+//! order serves the any-hit query, which stops at the first hit. A popped
 //! entry whose entry parameter exceeds the current best is skipped. A leaf's triangles are tested
 //! four at a time (`triangle::intersect_block`, the same bits as one at a time). The batch queries
 //! trace runs of coherent rays together (the `packet` module), each ray keeping its own best and
@@ -592,26 +593,45 @@ impl Bvh {
             }
             let node = &self.nodes[entry.child as usize];
             let (near, far) = Self::children(ray, node, t_min, best_t);
-            // Entered lanes, sorted by entry parameter, nearest last (popped first).
-            let mut order = [(0.0, 0_usize); 4];
-            let mut entered = 0;
+            let mut mask = 0_u32;
             for lane in 0..4 {
-                if near[lane] <= far[lane] {
-                    let mut k = entered;
-                    while k > 0 && order[k - 1].0 < near[lane] {
-                        order[k] = order[k - 1];
-                        k -= 1;
-                    }
-                    order[k] = (near[lane], lane);
-                    entered += 1;
-                }
+                mask |= u32::from(near[lane] <= far[lane]) << lane;
             }
-            for &(near, lane) in &order[..entered] {
-                stack.push(Entry {
-                    child: node.child[lane],
-                    count: node.count[lane],
-                    near,
-                });
+            let entry_of = |lane: usize| Entry {
+                child: node.child[lane],
+                count: node.count[lane],
+                near: near[lane],
+            };
+            match mask.count_ones() {
+                0 => {}
+                1 => stack.push(entry_of(mask.trailing_zeros() as usize)),
+                2 => {
+                    let a = mask.trailing_zeros() as usize;
+                    let b = (mask & (mask - 1)).trailing_zeros() as usize;
+                    // The nearer last (popped first); the first lane on ties.
+                    let (first, second) = if near[b] < near[a] { (b, a) } else { (a, b) };
+                    stack.push(entry_of(second));
+                    stack.push(entry_of(first));
+                }
+                _ => {
+                    // Entered lanes, sorted by entry parameter, nearest last (popped first).
+                    let mut order = [(0.0, 0_usize); 4];
+                    let mut entered = 0;
+                    for (lane, &lane_near) in near.iter().enumerate() {
+                        if mask & (1 << lane) != 0 {
+                            let mut k = entered;
+                            while k > 0 && order[k - 1].0 < lane_near {
+                                order[k] = order[k - 1];
+                                k -= 1;
+                            }
+                            order[k] = (lane_near, lane);
+                            entered += 1;
+                        }
+                    }
+                    for &(_, lane) in &order[..entered] {
+                        stack.push(entry_of(lane));
+                    }
+                }
             }
         }
         best_uv.map(|(u, v)| Hit {
