@@ -335,8 +335,8 @@ pub struct AliasingStats {
     pub max: f64,
     /// The 99th percentile by nearest rank: the `⌈0.99·count⌉`-th smallest value.
     pub p99: f64,
-    /// The arithmetic mean: the exact sum rounded once ([`crate::exact_sum`]), divided by the
-    /// count.
+    /// The arithmetic mean: the exact sum rounded once (a long fixed-point accumulator), divided
+    /// by the count.
     pub mean: f64,
     /// How many values were summarised.
     pub count: u64,
