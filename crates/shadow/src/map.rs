@@ -5,7 +5,7 @@ use rayon::prelude::*;
 use shadowlab_raster::{
     DepthFormat, DepthPairTarget, DepthTarget, RasterError, RasterOptions, Rasterizer, Triangles,
 };
-use shadowlab_trace::{Bvh, Ray};
+use shadowlab_trace::{Bvh, RAY_CHUNK, Ray};
 
 use crate::error::ShadowError;
 use crate::setup::{LightSetup, ShadowMapping};
@@ -86,9 +86,9 @@ impl ShadowMap {
     /// Makes the logarithmic map exactly: one ray of light per texel centre, found through the
     /// inverse mapping ([`crate::logarithmic::LogarithmicMap::texel_ray`]), cast against `bvh`;
     /// the first hit's depth (and the second's, if asked for) through the forward mapping, stored
-    /// in `options.format`. Rows are cast in parallel, each row's rays as one batch
-    /// ([`Bvh::closest_hits`], which traces neighbouring texels' rays together); each texel's
-    /// value depends on its ray alone.
+    /// in `options.format`. Rows are cast in parallel, each row's rays in batches of at most
+    /// [`RAY_CHUNK`] ([`Bvh::closest_hits`], which traces neighbouring texels' rays together);
+    /// each texel's value depends on its ray alone.
     ///
     /// # Errors
     /// [`ShadowError::NotDefined`] for a projective set-up (rasterize it with [`Self::render`]);
@@ -108,18 +108,18 @@ impl ShadowMap {
             options.format.decode(options.format.encode(depth))
         };
         let row_depths = |j: usize| -> Result<Vec<(f64, f64)>, ShadowError> {
-            // The row's rays in texel order, neighbours side by side.
-            let rays = (0..side)
-                .map(|i| {
-                    let (from, to) = map.texel_ray(centre(i), centre(j));
-                    Ray::new(from, to - from)
-                })
-                .collect::<Result<Vec<Ray>, _>>()?;
-            let firsts = bvh.closest_hits(&rays, 0.0, 1.0);
-            Ok(rays
-                .iter()
-                .zip(firsts)
-                .map(|(ray, first)| {
+            let mut depths = Vec::with_capacity(side);
+            // The row's rays in texel order, neighbours side by side, in batches of at most one
+            // work item of the batch query (so that it runs on this thread, not split).
+            for first in (0..side).step_by(RAY_CHUNK) {
+                let rays = (first..side.min(first + RAY_CHUNK))
+                    .map(|i| {
+                        let (from, to) = map.texel_ray(centre(i), centre(j));
+                        Ray::new(from, to - from)
+                    })
+                    .collect::<Result<Vec<Ray>, _>>()?;
+                let firsts = bvh.closest_hits(&rays, 0.0, 1.0);
+                depths.extend(rays.iter().zip(firsts).map(|(ray, first)| {
                     let Some(first) = first else {
                         return (1.0, 1.0);
                     };
@@ -133,8 +133,9 @@ impl ShadowMap {
                         1.0
                     };
                     (store(ray, first.t), second)
-                })
-                .collect())
+                }));
+            }
+            Ok(depths)
         };
         let rows: Vec<Vec<(f64, f64)>> = (0..side)
             .into_par_iter()

@@ -5,11 +5,11 @@
 //! interval is computed for all four child boxes ([`PreparedRay::slab`], lane by lane); children
 //! whose interval meets `[t_min, t_best]` are pushed farthest first, so the nearest is visited
 //! next (closest hit; one or two entered children, the common cases, without sorting) — any
-//! order serves the any-hit query, which stops at the first hit. A popped
-//! entry whose entry parameter exceeds the current best is skipped. A leaf's triangles are tested
-//! four at a time (`triangle::intersect_block`, the same bits as one at a time). The batch queries
-//! trace runs of coherent rays together (the `packet` module), each ray keeping its own best and
-//! its own tests, so that the argument below holds for each ray of a packet.
+//! order serves the any-hit query, which stops at the first hit. A popped entry whose entry
+//! parameter exceeds the current best is skipped. A leaf's triangles are tested four at a time
+//! (`triangle::intersect_block`, the same bits as one at a time). The batch queries trace runs of
+//! coherent rays together (the `packet` module), each ray keeping its own best and its own tests,
+//! so that the argument below holds for each ray of a packet.
 //!
 //! # Why the traversal finds what brute force finds
 //! Ize, "Robust BVH Ray Traversal", JCGT 2(2), 2013 (<https://jcgt.org/published/0002/02/02/>),

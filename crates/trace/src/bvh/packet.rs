@@ -21,12 +21,13 @@
 //! inverses; an empty lane's infinite plane gives an infinite product of the right sign).
 //!
 //! # What each ray tests
-//! At a leaf the packet holds, each ray's own slab test of the leaf's box ([`PreparedRay::slab`]
-//! with the ray's `[t_min, best]`, computed when the leaf is reached) decides whether the ray
-//! tests the leaf's triangles, with the one-ray test. So every ray enters every box its own
-//! traversal would enter (the bound above, and its best only shrinks), and tests every triangle
-//! whose hit could win: by the argument of the `bvh` module, each ray's answer is the brute-force
-//! answer, to the bit, whichever rays share its packet.
+//! When the packet enters a leaf, each ray's own slab test of the leaf's box
+//! ([`PreparedRay::slab`] with the ray's `[t_min, best]`, lane by lane the same operations; done
+//! with the bests of that moment, which only shrink afterwards) decides whether the ray tests the
+//! leaf's triangles, with the one-ray test. So every ray enters every box its own traversal would
+//! enter (the bound above), and tests every triangle whose hit could win: by the argument of the
+//! `bvh` module, each ray's answer is the brute-force answer, to the bit, whichever rays share its
+//! packet and in whatever order the packet visits the tree.
 //!
 //! Rays whose direction signs differ, or with a zero direction component (an infinite inverse),
 //! do not form a packet: the batch casts them one by one.
