@@ -118,7 +118,7 @@ for p in ("light", "eye"):
     awk '
       /^raster\// { split($1, id, "/"); name = id[2]; pass = id[3]; sub(/-.*/, "", pass)
                     threads = id[4]; sub(/-threads/, "", threads) }
-      /time: +\[/ {
+      /time: +\[/ && !/%/ {
         sub(/.*time: +\[/, ""); split($0, f, " "); value = f[3]; unit = f[4]
         if (unit == "µs" || unit == "us") value /= 1000; else if (unit == "s") value *= 1000
         print "shadowlab\t" name "\t" pass "\t" threads "\t" value }' >> "$times"
