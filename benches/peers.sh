@@ -45,19 +45,8 @@ cargo bench --bench raster --no-run --quiet 2>/dev/null
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 
-# Waits until the machine is idle: at least 95 % of CPU time idle over 2 s (/proc/stat), for at
-# most IDLE_WAIT seconds (default 600); says so if it never was.
-wait_idle() {
-  local tries=0 a b idle total
-  while [ $tries -lt $(( ${IDLE_WAIT:-600} / 2 )) ]; do
-    read -ra a < /proc/stat; sleep 2; read -ra b < /proc/stat
-    idle=$(( (b[4] + b[5]) - (a[4] + a[5]) ))
-    total=0; for i in 1 2 3 4 5 6 7 8; do total=$(( total + b[i] - a[i] )); done
-    [ $total -gt 0 ] && [ $(( 100 * idle / total )) -ge 95 ] && return 0
-    tries=$((tries + 1))
-  done
-  echo "peers.sh: the machine never became idle; timing anyway" >&2
-}
+# shellcheck source=benches/idle.sh
+source benches/idle.sh
 
 echo "== machine: $(lscpu | sed -n 's/^Model name: *//p'), $(nproc) CPUs; commit $(git rev-parse --short HEAD)"
 [ -n "$moc" ] && echo "== $(cat "$MOC_BUILD/moc-version.txt" 2>/dev/null || echo 'MOC source: unknown')"

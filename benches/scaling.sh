@@ -20,17 +20,8 @@ bin=$PWD/target/release/shadowlab
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
-wait_idle() {
-  local tries=0 a b idle total
-  while [ $tries -lt $(( ${IDLE_WAIT:-600} / 2 )) ]; do
-    read -ra a < /proc/stat; sleep 2; read -ra b < /proc/stat
-    idle=$(( (b[4] + b[5]) - (a[4] + a[5]) ))
-    total=0; for i in 1 2 3 4 5 6 7 8; do total=$(( total + b[i] - a[i] )); done
-    [ $total -gt 0 ] && [ $(( 100 * idle / total )) -ge 95 ] && return 0
-    tries=$((tries + 1))
-  done
-  echo "scaling.sh: the machine never became idle; timing anyway" >&2
-}
+# shellcheck source=benches/idle.sh
+source benches/idle.sh
 
 # The outdoor scene with its ground's segments and its image size replaced, written to $1.
 variant() {
