@@ -47,9 +47,10 @@ fn report_json(report: &OptimalReport) -> Value {
 
 fn setup_json(setup: &LightSetup) -> Value {
     let (view, projection) = match setup.mapping {
-        ShadowMapping::Projective { view, projection } => {
-            (json!(row_major(&view)), json!(row_major(&projection)))
-        }
+        ShadowMapping::Projective(mapping) => (
+            json!(row_major(&mapping.view())),
+            json!(row_major(&mapping.projection())),
+        ),
         ShadowMapping::Logarithmic(_) => (Value::Null, Value::Null),
     };
     let warp = setup.warp.as_ref();
@@ -218,8 +219,11 @@ pub(crate) fn run(args: &InspectArgs) -> Result<(), CliError> {
                 print_line(&format!("      {} {} {}", v.x, v.y, v.z))?;
             }
             match s.mapping {
-                ShadowMapping::Projective { view, projection } => {
-                    for (name, m) in [("view", view), ("projection", projection)] {
+                ShadowMapping::Projective(mapping) => {
+                    for (name, m) in [
+                        ("view", mapping.view()),
+                        ("projection", mapping.projection()),
+                    ] {
                         print_line(&format!("    {name} (row-major):"))?;
                         for row in row_major(&m).chunks(4) {
                             print_line(&format!(

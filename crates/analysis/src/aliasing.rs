@@ -109,7 +109,7 @@ impl<'a> Prepared<'a> {
     fn new(mapping: &'a ShadowMapping) -> Self {
         match mapping {
             ShadowMapping::Logarithmic(map) => Self::Logarithmic(map),
-            ShadowMapping::Projective { view, projection } => Self::Projective(*projection * *view),
+            ShadowMapping::Projective(mapping) => Self::Projective(mapping.clip_from_world()),
         }
     }
 

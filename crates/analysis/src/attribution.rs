@@ -502,8 +502,8 @@ fn texel_surface(
             let (from, to) = log.texel_ray(x, y);
             (Ray::new(from, to - from).ok()?, 1.0)
         }
-        (ShadowMapping::Projective { .. }, Some(inverse)) => projective_ray(bvh, inverse, x, y)?,
-        (ShadowMapping::Projective { .. }, None) => return None,
+        (ShadowMapping::Projective(_), Some(inverse)) => projective_ray(bvh, inverse, x, y)?,
+        (ShadowMapping::Projective(_), None) => return None,
     };
     bvh.closest_hit(&ray, 0.0, t_max).map(|hit| hit.triangle)
 }

@@ -22,7 +22,8 @@ use shadowlab_raster::{EyeImage, NO_TRIANGLE};
 use shadowlab_scene::{Camera, Scene, SceneLight};
 use shadowlab_shadow::{
     Bias, Eye, Filter, GivenDepths, LightMaps, LightSetup, LightSource, MapOptions, MapSource,
-    Partition, PartitionMap, Selection, ShadowError, ShadowMapping, Shadows, eye_image, shadows_of,
+    Partition, PartitionMap, ProjectiveMapping, Selection, ShadowError, ShadowMapping, Shadows,
+    eye_image, shadows_of,
 };
 
 use crate::aliasing::Footprint;
@@ -297,10 +298,10 @@ fn partition_map(
     };
     let light_setup = LightSetup {
         technique: setup.technique,
-        mapping: ShadowMapping::Projective {
-            view: partition.view,
-            projection: partition.projection,
-        },
+        mapping: ShadowMapping::Projective(ProjectiveMapping::new(
+            partition.view,
+            partition.projection,
+        )),
         gamma,
         half_fov: eye.half_fov_toward(toward),
         warp: None,

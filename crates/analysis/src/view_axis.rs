@@ -153,7 +153,7 @@ fn closed_form(technique: Technique, setup: &LightSetup, range: DepthRange, t: f
         // reference point is the eye; elsewhere `LogarithmicMap::view_axis_error`.
         Technique::Logarithmic(_) => match &setup.mapping {
             ShadowMapping::Logarithmic(map) => Some(map.view_axis_error(setup.gamma.sin(), t)),
-            ShadowMapping::Projective { .. } => None,
+            ShadowMapping::Projective(_) => None,
         },
         Technique::Psm
         | Technique::Optimal(_)

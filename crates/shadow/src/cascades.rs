@@ -23,7 +23,7 @@ use crate::cascade_fit::{CascadeFit, Snap};
 use crate::error::ShadowError;
 use crate::input::{LightSource, PlanInput};
 use crate::partition::CullingSphere;
-use crate::setup::{LightSetup, ShadowMapping};
+use crate::setup::{LightSetup, ProjectiveMapping, ShadowMapping};
 use crate::technique::Technique;
 
 /// Within this of parallel to world y (|L·y|), the light basis takes world z as up.
@@ -108,10 +108,7 @@ pub fn plan(
                 sphere,
                 setup: LightSetup {
                     technique,
-                    mapping: ShadowMapping::Projective {
-                        view: basis,
-                        projection,
-                    },
+                    mapping: ShadowMapping::Projective(ProjectiveMapping::new(basis, projection)),
                     gamma: shadowlab_hull::light_view_angle(input.eye.pose.forward(), to_light)?,
                     half_fov: input.eye.half_fov_toward(to_light),
                     warp: None,

@@ -72,7 +72,7 @@ pub use render::{
 };
 pub use selection::{Beyond, Fade, FadeCurve, Selection, SelectionRule};
 pub use serving::{Served, served};
-pub use setup::{LightSetup, PsmReport, ShadowMapping, WarpReport};
+pub use setup::{LightSetup, ProjectiveMapping, PsmReport, ShadowMapping, WarpReport};
 pub use snap::snap_to_texels;
 pub use technique::{
     BlendWidth, Engine, LogarithmicChoice, NearDistance, PresetChoices, ProductionVariant,

@@ -53,7 +53,7 @@ impl ShadowMap {
         mesh: Triangles<'_>,
         options: MapOptions,
     ) -> Result<Self, ShadowError> {
-        let ShadowMapping::Projective { .. } = setup.mapping else {
+        let ShadowMapping::Projective(_) = setup.mapping else {
             return Err(ShadowError::NotDefined {
                 technique: setup.technique.key(),
                 reason: "the logarithmic map is not projective: cast rays instead".into(),

@@ -27,7 +27,7 @@ const STEP: f64 = 1e-3;
 pub fn view_axis_error(mapping: &ShadowMapping, eye: &Eye, t: f64) -> Option<f64> {
     let (e, v) = (eye.pose.eye(), eye.pose.forward());
     let speed = match mapping {
-        ShadowMapping::Projective { .. } => {
+        ShadowMapping::Projective(_) => {
             // Each window coordinate is (a + b t)/(c + d t) of the clip rows: exact derivative.
             let m = mapping.clip_from_world()?;
             let (p, dp) = (m * (e + v * t).extend(1.0), m * v.extend(0.0));

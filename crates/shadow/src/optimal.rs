@@ -138,7 +138,7 @@ use crate::lookup::{Filter, Lookup};
 use crate::map::{MapOptions, ShadowMap};
 use crate::partition::Partition;
 use crate::plan::{Splits, partition_inputs};
-use crate::setup::{LightSetup, ShadowMapping};
+use crate::setup::{LightSetup, ProjectiveMapping, ShadowMapping};
 use crate::technique::{StepDirection, Technique};
 use crate::warp::Extents;
 
@@ -992,10 +992,7 @@ impl Problem {
         Ok(Optimized {
             setup: LightSetup {
                 technique: Technique::Optimal(options.direction),
-                mapping: ShadowMapping::Projective {
-                    view: self.view,
-                    projection,
-                },
+                mapping: ShadowMapping::Projective(ProjectiveMapping::new(self.view, projection)),
                 gamma: self.initial.gamma,
                 half_fov: self.initial.half_fov,
                 warp: None,

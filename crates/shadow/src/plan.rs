@@ -11,7 +11,7 @@ use crate::focus::{focus_in_light_space, view_model};
 use crate::input::PlanInput;
 use crate::parameter::{self, WarpGeometry};
 use crate::partition::Partition;
-use crate::setup::{LightSetup, ShadowMapping, WarpReport};
+use crate::setup::{LightSetup, ProjectiveMapping, ShadowMapping, WarpReport};
 use crate::technique::{LogarithmicChoice, Technique, WarpChoice};
 use crate::warp::{self, Extents};
 use crate::{logarithmic, psm};
@@ -83,10 +83,10 @@ fn light_space_warp(input: &PlanInput, technique: Technique) -> Result<LightSetu
     let fitted = warp::fit(&points, decision.reference, kappa)?;
     Ok(LightSetup {
         technique,
-        mapping: ShadowMapping::Projective {
-            view: frame.world_to_light(),
-            projection: fitted.matrix,
-        },
+        mapping: ShadowMapping::Projective(ProjectiveMapping::new(
+            frame.world_to_light(),
+            fitted.matrix,
+        )),
         gamma: gamma.radians(),
         half_fov,
         warp: Some(WarpReport {
@@ -142,10 +142,10 @@ fn uniform_limited(input: &PlanInput) -> Result<LightSetup, ShadowError> {
     let projection = DMat4::from_cols(x_row, y_row, z_row, DVec4::W).transpose();
     Ok(LightSetup {
         technique,
-        mapping: ShadowMapping::Projective {
-            view: frame.world_to_light(),
+        mapping: ShadowMapping::Projective(ProjectiveMapping::new(
+            frame.world_to_light(),
             projection,
-        },
+        )),
         gamma: frame.gamma(),
         half_fov,
         warp: None,

@@ -286,8 +286,8 @@ impl Engine {
     #[must_use]
     pub fn bias(self, partition: &Partition, resolution: u32) -> Bias {
         let texel = match partition.setup.mapping {
-            ShadowMapping::Projective { projection, .. } => {
-                2.0 / projection.x_axis.x.abs() / f64::from(resolution)
+            ShadowMapping::Projective(mapping) => {
+                2.0 / mapping.projection().x_axis.x.abs() / f64::from(resolution)
             }
             ShadowMapping::Logarithmic(_) => 0.0,
         };

@@ -34,7 +34,7 @@ use shadowlab_hull::{
 use crate::error::ShadowError;
 use crate::focus::view_model;
 use crate::input::{FocusPolicy, PlanInput};
-use crate::setup::{LightSetup, PsmReport, ShadowMapping};
+use crate::setup::{LightSetup, ProjectiveMapping, PsmReport, ShadowMapping};
 use crate::technique::Technique;
 use crate::warp;
 
@@ -138,10 +138,10 @@ pub fn plan_with_shift(input: &PlanInput, shift: Option<f64>) -> Result<LightSet
     let gamma = shadowlab_hull::light_view_angle(v, input.light.toward_from(e))?;
     Ok(LightSetup {
         technique: Technique::Psm,
-        mapping: ShadowMapping::Projective {
+        mapping: ShadowMapping::Projective(ProjectiveMapping::new(
             view,
-            projection: fitted.matrix * to_parallel * to_pps,
-        },
+            fitted.matrix * to_parallel * to_pps,
+        )),
         gamma,
         half_fov,
         warp: None,

@@ -97,7 +97,7 @@ use crate::error::ShadowError;
 use crate::frame::LightFrame;
 use crate::input::{LightSource, PlanInput};
 use crate::partition::Partition;
-use crate::setup::{LightSetup, ShadowMapping};
+use crate::setup::{LightSetup, ProjectiveMapping, ShadowMapping};
 pub use crate::technique::SdsmVariant;
 use crate::technique::Technique;
 
@@ -352,10 +352,7 @@ fn light_setup(
     let view = frame.world_to_light();
     LightSetup {
         technique,
-        mapping: ShadowMapping::Projective {
-            view,
-            projection: window.projection(),
-        },
+        mapping: ShadowMapping::Projective(ProjectiveMapping::new(view, window.projection())),
         gamma: frame.gamma(),
         half_fov,
         warp: None,
@@ -555,10 +552,8 @@ fn fit(to_light: &DMat4, samples: &[Sample], reach: f64) -> Result<Window, Shado
     hi.y = hi.y.max(reach);
     let mut window = Window { lo, hi }.unflattened()?;
     for pass in 0..ROUNDING_PASSES {
-        let mapping = ShadowMapping::Projective {
-            view: *to_light,
-            projection: window.projection(),
-        };
+        let mapping =
+            ShadowMapping::Projective(ProjectiveMapping::new(*to_light, window.projection()));
         let (low, high) = bounds(samples, |sample| mapping.window(sample.world))?;
         if !window.widen(low, high, pass) {
             return Ok(window);

@@ -12,15 +12,59 @@ pub enum ShadowMapping {
     /// GL clip space = `projection · view · (p, 1)`; window coordinates `(ndc + 1)/2`. Depth grows
     /// away from the light, so the depth test is `Less` for every technique (PSM's inverted lights
     /// included: their depth axis is flipped instead of the test).
-    Projective {
-        /// World → the technique's light view space (light space, or the virtual camera's eye
-        /// space for PSM).
-        view: DMat4,
-        /// Light view space → GL clip space of the shadow map.
-        projection: DMat4,
-    },
+    Projective(ProjectiveMapping),
     /// The logarithmic parameterisation, evaluated exactly (see [`LogarithmicMap`]).
     Logarithmic(LogarithmicMap),
+}
+
+/// A projective mapping: a view and a projection matrix, and their product formed once.
+///
+/// Every window position is `(projection · view) · (p, 1)` with the product already made, so a
+/// lookup, a containment test or a depth gradient costs one matrix–vector product, not a
+/// matrix–matrix product as well; the product is the same bits however often it is formed.
+#[derive(Clone, Copy, Debug)]
+pub struct ProjectiveMapping {
+    view: DMat4,
+    projection: DMat4,
+    clip_from_world: DMat4,
+}
+
+impl ProjectiveMapping {
+    /// The mapping `projection · view`.
+    #[must_use]
+    pub fn new(view: DMat4, projection: DMat4) -> Self {
+        Self {
+            view,
+            projection,
+            clip_from_world: projection * view,
+        }
+    }
+
+    /// World → the technique's light view space (light space, or the virtual camera's eye space
+    /// for PSM).
+    #[must_use]
+    pub fn view(&self) -> DMat4 {
+        self.view
+    }
+
+    /// Light view space → GL clip space of the shadow map.
+    #[must_use]
+    pub fn projection(&self) -> DMat4 {
+        self.projection
+    }
+
+    /// World → GL clip space: `projection · view`.
+    #[must_use]
+    pub fn clip_from_world(&self) -> DMat4 {
+        self.clip_from_world
+    }
+}
+
+/// Two mappings are equal when their view and projection are (the product follows from them).
+impl PartialEq for ProjectiveMapping {
+    fn eq(&self, other: &Self) -> bool {
+        self.view == other.view && self.projection == other.projection
+    }
 }
 
 impl ShadowMapping {
@@ -30,8 +74,8 @@ impl ShadowMapping {
     #[must_use]
     pub fn window(&self, world: DVec3) -> Option<DVec3> {
         let ndc = match self {
-            Self::Projective { view, projection } => {
-                let clip = *projection * *view * world.extend(1.0);
+            Self::Projective(mapping) => {
+                let clip = mapping.clip_from_world * world.extend(1.0);
                 if clip.w <= 0.0 {
                     return None;
                 }
@@ -46,7 +90,7 @@ impl ShadowMapping {
     #[must_use]
     pub fn clip_from_world(&self) -> Option<DMat4> {
         match self {
-            Self::Projective { view, projection } => Some(*projection * *view),
+            Self::Projective(mapping) => Some(mapping.clip_from_world),
             Self::Logarithmic(_) => None,
         }
     }

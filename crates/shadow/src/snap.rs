@@ -8,16 +8,16 @@
 
 use glam::{DMat4, DVec3, DVec4};
 
-use crate::setup::{LightSetup, ShadowMapping};
+use crate::setup::{LightSetup, ProjectiveMapping, ShadowMapping};
 
 /// `setup` with its window snapped to the `texels`-texel grid of a `resolution`-texel map. The
 /// logarithmic map, which is not projective, is returned unchanged.
 #[must_use]
 pub fn snap_to_texels(setup: &LightSetup, resolution: u32, texels: u32) -> LightSetup {
-    let ShadowMapping::Projective { view, projection } = setup.mapping else {
+    let ShadowMapping::Projective(mapping) = setup.mapping else {
         return setup.clone();
     };
-    let clip = projection * view * DVec3::ZERO.extend(1.0);
+    let clip = mapping.clip_from_world() * DVec3::ZERO.extend(1.0);
     if clip.w <= 0.0 || texels == 0 {
         return setup.clone();
     }
@@ -28,9 +28,9 @@ pub fn snap_to_texels(setup: &LightSetup, resolution: u32, texels: u32) -> Light
     // An NDC translation: S·(x, y, z, w) = (x + dx·w, y + dy·w, z, w).
     let shift = DMat4::from_cols(DVec4::X, DVec4::Y, DVec4::Z, DVec4::new(dx, dy, 0.0, 1.0));
     let mut snapped_setup = setup.clone();
-    snapped_setup.mapping = ShadowMapping::Projective {
-        view,
-        projection: shift * projection,
-    };
+    snapped_setup.mapping = ShadowMapping::Projective(ProjectiveMapping::new(
+        mapping.view(),
+        shift * mapping.projection(),
+    ));
     snapped_setup
 }

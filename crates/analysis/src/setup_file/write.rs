@@ -79,7 +79,7 @@ fn entry(
         reason: reason.into(),
     };
     let (view, projection) = match (&partition.face, &partition.setup.mapping) {
-        (None, ShadowMapping::Projective { view, projection }) => (view, projection),
+        (None, ShadowMapping::Projective(mapping)) => (mapping.view(), mapping.projection()),
         (face, ShadowMapping::Logarithmic(_)) => {
             return Err(refused(&format!(
                 "the logarithmic map is not a matrix per partition: its warp \
@@ -95,7 +95,7 @@ fn entry(
                 }
             )));
         }
-        (Some(_), ShadowMapping::Projective { .. }) => {
+        (Some(_), ShadowMapping::Projective(_)) => {
             return Err(refused(
                 "its partitions are chosen per pixel by the face of the view frustum a point \
                  projects into, and the format's partitions are chosen by eye depth alone",
@@ -105,8 +105,8 @@ fn entry(
     Ok(PartitionEntry {
         near: partition.near,
         far: partition.far,
-        view: row_major(view),
-        projection: row_major(projection),
+        view: row_major(&view),
+        projection: row_major(&projection),
         map_size: options.resolution,
         depth_format: options.format.key_name().into(),
         bias: options.lookup.bias.to_string(),

@@ -419,10 +419,9 @@ fn reversed_depth_images_hold_one_minus_z() {
     let partition = &setup.frames[0].lights[0][0];
     let light_setup = shadowlab_shadow::LightSetup {
         technique: Technique::Given,
-        mapping: shadowlab_shadow::ShadowMapping::Projective {
-            view: partition.view,
-            projection: partition.projection,
-        },
+        mapping: shadowlab_shadow::ShadowMapping::Projective(
+            shadowlab_shadow::ProjectiveMapping::new(partition.view, partition.projection),
+        ),
         gamma: 0.0,
         half_fov: 0.0,
         warp: None,

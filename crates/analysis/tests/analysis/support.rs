@@ -135,10 +135,7 @@ pub(crate) fn orthographic(light: &ViewPose, half: f64, shift: f64) -> LightSetu
     .matrix(NdcDepth::NegativeOneToOne);
     LightSetup {
         technique: Technique::Uniform,
-        mapping: ShadowMapping::Projective {
-            view: light.view_matrix(),
-            projection,
-        },
+        mapping: ShadowMapping::Projective(ProjectiveMapping::new(light.view_matrix(), projection)),
         gamma: FRAC_PI_2,
         half_fov: 0.4,
         warp: None,

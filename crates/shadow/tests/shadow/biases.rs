@@ -17,7 +17,7 @@ const SIDE: u32 = 256;
 fn map_of(view: DMat4, projection: DMat4) -> ShadowMap {
     map_of_setup(LightSetup {
         technique: Technique::Given,
-        mapping: ShadowMapping::Projective { view, projection },
+        mapping: ShadowMapping::Projective(ProjectiveMapping::new(view, projection)),
         gamma: 0.0,
         half_fov: 0.0,
         warp: None,

@@ -60,10 +60,10 @@ const UNSNAPPED: PresetChoices = PresetChoices {
 };
 
 fn matrices(setup: &LightSetup) -> (DMat4, DMat4) {
-    let ShadowMapping::Projective { view, projection } = setup.mapping else {
+    let ShadowMapping::Projective(mapping) = setup.mapping else {
         panic!("cascades are projective");
     };
-    (view, projection)
+    (mapping.view(), mapping.projection())
 }
 
 /// The window's width and height in world units: 2 over the projection's x and y scales.

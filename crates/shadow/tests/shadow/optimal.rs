@@ -350,10 +350,11 @@ fn scene_input(scene: &Scene) -> PlanInput {
 
 /// The reduced rows of a planned map's P, scaled so that `|p̃_4| = 1`.
 fn planned_rows(problem: &Problem, mapping: &ShadowMapping) -> Rows {
-    let ShadowMapping::Projective { view, projection } = mapping else {
+    let ShadowMapping::Projective(mapping) = mapping else {
         panic!("the optimized map is projective");
     };
-    assert_eq!(*view, problem.view());
+    assert_eq!(mapping.view(), problem.view());
+    let projection = mapping.projection();
     let [p1, p2, p4] = [0, 1, 3].map(|i| problem.light().reduce(projection.row(i)));
     let norm = p4.length();
     Rows {

@@ -145,11 +145,11 @@ fn authors_2006_measures_from_the_focus_bodys_nearest_point() {
             warp.near_distance
         );
 
-        let ShadowMapping::Projective { view, .. } = setup.mapping else {
+        let ShadowMapping::Projective(mapping) = setup.mapping else {
             panic!("projective")
         };
         // The warp axis in world space: light-space z.
-        let axis: DVec4 = view.inverse() * DVec4::Z;
+        let axis: DVec4 = mapping.view().inverse() * DVec4::Z;
         let axis = axis.truncate();
         let x_of = |p: DVec3| setup.mapping.window(p).unwrap().x;
         let span = warp.depth;
