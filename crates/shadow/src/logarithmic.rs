@@ -36,7 +36,7 @@ use crate::setup::{LightSetup, ShadowMapping, WarpReport};
 use crate::technique::{LogarithmicChoice, Technique};
 use crate::warp::Extents;
 
-pub use crate::logarithmic_map::LogarithmicMap;
+pub use crate::logarithmic_map::{LogarithmicMap, TexelRow};
 
 /// The smallest λ of a logarithmic map: a reference point within a billionth of B's depth of its
 /// near plane would all but sit on B (a third of the map's rows would cover B's first 1e-6 of

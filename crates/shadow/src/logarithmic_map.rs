@@ -29,6 +29,22 @@ impl LogarithmicMap {
     /// reference point).
     #[must_use]
     pub fn ndc(&self, world: DVec3) -> Option<DVec3> {
+        let (q, tau, w) = self.light_point(world)?;
+        let x = (2.0 * q.x / w - (self.left + self.right)) / (self.right - self.left);
+        let y = 2.0 * self.warp(tau) - 1.0;
+        Some(DVec3::new(x, y, self.depth_of(q)))
+    }
+
+    /// [`Self::ndc`]'s depth alone (the same bits), without the warp's logarithm: what a texel
+    /// stores of the surface its ray hits.
+    #[must_use]
+    pub fn ndc_depth(&self, world: DVec3) -> Option<f64> {
+        self.light_point(world).map(|(q, _, _)| self.depth_of(q))
+    }
+
+    /// A world point in light space `q`, the fraction τ of B's depth it lies through and
+    /// `w = 1 + κτ`; `None` where [`Self::ndc`] is.
+    fn light_point(&self, world: DVec3) -> Option<(DVec3, f64, f64)> {
         let h = self.world_to_light * world.extend(1.0);
         if h.w <= 0.0 {
             return None;
@@ -36,13 +52,12 @@ impl LogarithmicMap {
         let q = h.truncate() / h.w;
         let tau = (self.z_max - q.z) / self.depth;
         let w = 1.0 + self.kappa * tau;
-        if w <= 0.0 {
-            return None;
-        }
-        let x = (2.0 * q.x / w - (self.left + self.right)) / (self.right - self.left);
-        let y = 2.0 * self.warp(tau) - 1.0;
-        let depth = (self.y_max + self.y_min - 2.0 * q.y) / (self.y_max - self.y_min);
-        Some(DVec3::new(x, y, depth))
+        (w > 0.0).then_some((q, tau, w))
+    }
+
+    /// NDC depth of light-space `q`: across B along the light axis.
+    fn depth_of(&self, q: DVec3) -> f64 {
+        (self.y_max + self.y_min - 2.0 * q.y) / (self.y_max - self.y_min)
     }
 
     /// The derivative of [`Self::ndc`]'s `(X, Y)` at `world` along `direction` (per unit of
@@ -80,6 +95,13 @@ impl LogarithmicMap {
     /// Casting it and mapping the first hit through [`Self::ndc`] gives the texel's depth.
     #[must_use]
     pub fn texel_ray(&self, x: f64, y: f64) -> (DVec3, DVec3) {
+        self.texel_row(y).ray(x)
+    }
+
+    /// The rays of the texels at NDC `y`: [`Self::texel_ray`] with what a row shares — the
+    /// inverse warp — computed once (the same bits).
+    #[must_use]
+    pub fn texel_row(&self, y: f64) -> TexelRow<'_> {
         // Inverse of Y: τ = (exp(s·ln(1 + κ)) − 1)/κ, s = (Y + 1)/2, written with expm1 so that it
         // is exact near τ = 0 and for small κ; τ = s at κ = 0.
         let s = 0.5 * (y + 1.0);
@@ -88,14 +110,11 @@ impl LogarithmicMap {
         } else {
             s
         };
-        let w = 1.0 + self.kappa * tau;
-        let lateral = 0.5 * w * (x * (self.right - self.left) + self.left + self.right);
-        let z = self.z_max - tau * self.depth;
-        let to_world = |light_y: f64| {
-            let h = self.light_to_world * DVec3::new(lateral, light_y, z).extend(1.0);
-            h.truncate() / h.w
-        };
-        (to_world(self.y_max), to_world(self.y_min))
+        TexelRow {
+            map: self,
+            w: 1.0 + self.kappa * tau,
+            z: self.z_max - tau * self.depth,
+        }
     }
 
     /// λ = n'/d, the reference point's distance beyond B's near plane in units of B's depth;
@@ -137,5 +156,29 @@ impl LogarithmicMap {
         } else {
             1.0
         }
+    }
+}
+
+/// One row of a logarithmic map's texel rays ([`LogarithmicMap::texel_row`]).
+#[derive(Clone, Copy, Debug)]
+pub struct TexelRow<'a> {
+    map: &'a LogarithmicMap,
+    /// `w = 1 + κτ` of the row.
+    w: f64,
+    /// The row's light-space z.
+    z: f64,
+}
+
+impl TexelRow<'_> {
+    /// The ray of the texel at NDC `x` in this row ([`LogarithmicMap::texel_ray`]).
+    #[must_use]
+    pub fn ray(&self, x: f64) -> (DVec3, DVec3) {
+        let map = self.map;
+        let lateral = 0.5 * self.w * (x * (map.right - map.left) + map.left + map.right);
+        let to_world = |light_y: f64| {
+            let h = map.light_to_world * DVec3::new(lateral, light_y, self.z).extend(1.0);
+            h.truncate() / h.w
+        };
+        (to_world(map.y_max), to_world(map.y_min))
     }
 }

@@ -104,44 +104,50 @@ impl ShadowMap {
         #[expect(clippy::cast_precision_loss, reason = "texel indices are small")]
         let centre = |k: usize| (k as f64 + 0.5) / side as f64 * 2.0 - 1.0;
         let store = |ray: &Ray, t: f64| {
-            let depth = map.ndc(ray.at(t)).map_or(1.0, |ndc| 0.5 * (ndc.z + 1.0));
+            let depth = map.ndc_depth(ray.at(t)).map_or(1.0, |z| 0.5 * (z + 1.0));
             options.format.decode(options.format.encode(depth))
         };
-        let row_depths = |j: usize| -> Result<Vec<(f64, f64)>, ShadowError> {
-            let mut depths = Vec::with_capacity(side);
+        // Row j's depths into `nearest` and, if asked for, `second`.
+        let fill_row = |j: usize,
+                        nearest: &mut [f64],
+                        mut second: Option<&mut [f64]>|
+         -> Result<(), ShadowError> {
+            let row = map.texel_row(centre(j));
             // The row's rays in texel order, neighbours side by side, in batches of at most one
             // work item of the batch query (so that it runs on this thread, not split).
             for first in (0..side).step_by(RAY_CHUNK) {
                 let rays = (first..side.min(first + RAY_CHUNK))
                     .map(|i| {
-                        let (from, to) = map.texel_ray(centre(i), centre(j));
+                        let (from, to) = row.ray(centre(i));
                         Ray::new(from, to - from)
                     })
                     .collect::<Result<Vec<Ray>, _>>()?;
                 let firsts = bvh.closest_hits(&rays, 0.0, 1.0);
-                depths.extend(rays.iter().zip(firsts).map(|(ray, first)| {
-                    let Some(first) = first else {
-                        return (1.0, 1.0);
-                    };
+                for (k, (ray, hit)) in rays.iter().zip(firsts).enumerate() {
+                    let Some(hit) = hit else { continue };
+                    nearest[first + k] = store(ray, hit.t);
                     // The next surface: beyond the first by more than SAME_SURFACE, so that the
                     // first surface's neighbour across a shared edge (hit a few ulps further) is
                     // not taken for it.
-                    let second = if options.second_depth {
-                        bvh.closest_hit(ray, first.t + SAME_SURFACE, 1.0)
-                            .map_or(1.0, |h| store(ray, h.t))
-                    } else {
-                        1.0
-                    };
-                    (store(ray, first.t), second)
-                }));
+                    if let Some(second) = second.as_deref_mut() {
+                        second[first + k] = bvh
+                            .closest_hit(ray, hit.t + SAME_SURFACE, 1.0)
+                            .map_or(1.0, |h| store(ray, h.t));
+                    }
+                }
             }
-            Ok(depths)
+            Ok(())
         };
-        let rows: Vec<Vec<(f64, f64)>> = (0..side)
-            .into_par_iter()
-            .map(row_depths)
-            .collect::<Result<_, ShadowError>>()?;
-        let (nearest, second): (Vec<f64>, Vec<f64>) = rows.into_iter().flatten().unzip();
+        // 1 where a texel's ray meets nothing.
+        let mut nearest = vec![1.0; side * side];
+        let mut second = vec![1.0; if options.second_depth { side * side } else { 0 }];
+        let rows = nearest.par_chunks_mut(side).enumerate();
+        if options.second_depth {
+            rows.zip(second.par_chunks_mut(side))
+                .try_for_each(|((j, nearest), second)| fill_row(j, nearest, Some(second)))?;
+        } else {
+            rows.try_for_each(|(j, nearest)| fill_row(j, nearest, None))?;
+        }
         Ok(Self {
             setup: setup.clone(),
             resolution: options.resolution,

@@ -71,6 +71,7 @@ impl ShadowMapping {
     /// The shadow-map window coordinates of a world point: `x, y ∈ [0, 1]` across the map and
     /// depth in `[0, 1]` (GL window depth) where the point lies inside the map's volume; `None` if
     /// the mapping sends it behind its projection centre.
+    #[inline]
     #[must_use]
     pub fn window(&self, world: DVec3) -> Option<DVec3> {
         let ndc = match self {
