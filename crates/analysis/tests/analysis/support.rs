@@ -7,7 +7,7 @@ use proptest::test_runner::{Config, RngSeed};
 use shadowlab_hull::{NdcDepth, Orthographic, Perspective, ViewPose};
 use shadowlab_raster::EyeImage;
 use shadowlab_scene::{Camera, Mesh, Scene, SceneLight, ShadowSettings, procedural};
-use shadowlab_shadow::{LightSetup, ShadowMapping, Technique};
+use shadowlab_shadow::{LightSetup, ProjectiveMapping, ShadowMapping, Technique};
 
 /// The seed of every property in this crate's tests.
 pub(crate) const SEED: u64 = 0x5348_4144_4f57_414e; // "SHADOWAN"

@@ -7,7 +7,7 @@ use shadowlab_hull::{Aabb, NdcDepth, Orthographic, Perspective, ViewPose};
 use shadowlab_raster::DepthFormat;
 use shadowlab_shadow::{
     Bias, DepthComparison, Eye, FocusPolicy, LightSetup, LightSource, LightTexel, NormalOffset,
-    PlanInput, ShadowMap, ShadowMapping, Technique, WarpChoice, plan,
+    PlanInput, ProjectiveMapping, ShadowMap, ShadowMapping, Technique, WarpChoice, plan,
 };
 
 /// Side of the hand-made maps, in texels.
