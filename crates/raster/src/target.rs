@@ -60,7 +60,7 @@ impl DepthTarget {
     #[must_use]
     pub fn depths(&self) -> Vec<f64> {
         let format = self.format;
-        self.keys().into_iter().map(|k| format.decode(k)).collect()
+        self.keys.image(self.size, |k| format.decode(k))
     }
 }
 
@@ -140,22 +140,14 @@ impl DepthPairTarget {
     #[must_use]
     pub fn nearest(&self) -> Vec<f64> {
         let format = self.format;
-        self.nearest
-            .untile(self.size)
-            .into_iter()
-            .map(|k| format.decode(k))
-            .collect()
+        self.nearest.image(self.size, |k| format.decode(k))
     }
 
     /// Second-nearest depths (1 where fewer than two surfaces cover the pixel).
     #[must_use]
     pub fn second(&self) -> Vec<f64> {
         let format = self.format;
-        self.second
-            .untile(self.size)
-            .into_iter()
-            .map(|k| format.decode(k))
-            .collect()
+        self.second.image(self.size, |k| format.decode(k))
     }
 }
 
@@ -221,11 +213,7 @@ impl EyeTarget {
     #[must_use]
     pub fn depths(&self) -> Vec<f64> {
         let format = self.format;
-        self.keys
-            .untile(self.size)
-            .into_iter()
-            .map(|k| format.decode(k))
-            .collect()
+        self.keys.image(self.size, |k| format.decode(k))
     }
 
     /// The visible triangle of each pixel ([`NO_TRIANGLE`] where none), row-major, row 0 at the

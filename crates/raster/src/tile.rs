@@ -5,6 +5,8 @@
 
 use std::borrow::Cow;
 
+use rayon::prelude::*;
+
 use crate::error::RasterError;
 use crate::fixed::MAX_TARGET_SIZE;
 
@@ -101,24 +103,37 @@ impl TargetSize {
         self.width as usize * self.height as usize
     }
 
-    /// Converts tiled storage to a row-major image (row 0 at the bottom), leaving out the padding;
-    /// tiles marked in `cleared` read as `clear_value` whatever they store.
-    fn untile<T: Copy + Default>(&self, tiled: &[T], cleared: &[bool], clear_value: T) -> Vec<T> {
-        let (w, h) = (self.width as usize, self.height as usize);
-        let mut out = vec![T::default(); self.pixel_count()];
-        for (y, row) in out.chunks_mut(w).enumerate().take(h) {
-            let ty = y / TILE_SIZE;
-            let in_tile_row = (y % TILE_SIZE) * TILE_STRIDE;
-            for (tx, span) in row.chunks_mut(TILE_SIZE).enumerate() {
-                let tile = ty * self.tiles_x + tx;
-                if cleared[tile] {
-                    span.fill(clear_value);
-                } else {
-                    let start = tile * TILE_PIXELS + in_tile_row;
-                    span.copy_from_slice(&tiled[start..start + span.len()]);
+    /// Converts tiled storage to a row-major image (row 0 at the bottom) of `value` of each stored
+    /// value, leaving out the padding; tiles marked in `cleared` read as `clear_value` whatever they
+    /// store. Bands of one tile row in parallel: each output value depends on its own pixel alone.
+    fn untile<T: Copy + Sync, U: Copy + Default + Send>(
+        &self,
+        tiled: &[T],
+        cleared: &[bool],
+        clear_value: T,
+        value: impl Fn(T) -> U + Sync,
+    ) -> Vec<U> {
+        let w = self.width as usize;
+        let mut out = vec![U::default(); self.pixel_count()];
+        out.par_chunks_mut(w * TILE_SIZE)
+            .enumerate()
+            .for_each(|(ty, band)| {
+                for (dy, row) in band.chunks_mut(w).enumerate() {
+                    let in_tile_row = dy * TILE_STRIDE;
+                    for (tx, span) in row.chunks_mut(TILE_SIZE).enumerate() {
+                        let tile = ty * self.tiles_x + tx;
+                        if cleared[tile] {
+                            span.fill(value(clear_value));
+                        } else {
+                            let start = tile * TILE_PIXELS + in_tile_row;
+                            let stored = &tiled[start..start + span.len()];
+                            for (out, &stored) in span.iter_mut().zip(stored) {
+                                *out = value(stored);
+                            }
+                        }
+                    }
                 }
-            }
-        }
+            });
         out
     }
 }
@@ -173,7 +188,16 @@ impl TiledPlane {
 
     /// The values as a row-major image (row 0 at the bottom).
     pub(crate) fn untile(&self, size: TargetSize) -> Vec<u32> {
-        size.untile(&self.values, &self.cleared, self.clear_value)
+        self.image(size, |v| v)
+    }
+
+    /// `value` of each pixel's value, as a row-major image (row 0 at the bottom).
+    pub(crate) fn image<U: Copy + Default + Send>(
+        &self,
+        size: TargetSize,
+        value: impl Fn(u32) -> U + Sync,
+    ) -> Vec<U> {
+        size.untile(&self.values, &self.cleared, self.clear_value, value)
     }
 
     /// The groups of [`TILE_GROUP`] tiles a draw writes in parallel, in storage order.
