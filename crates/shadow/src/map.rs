@@ -112,6 +112,11 @@ impl ShadowMap {
                         nearest: &mut [f64],
                         mut second: Option<&mut [f64]>|
          -> Result<(), ShadowError> {
+            // 1 where a texel's ray meets nothing.
+            nearest.fill(1.0);
+            if let Some(second) = second.as_deref_mut() {
+                second.fill(1.0);
+            }
             let row = map.texel_row(centre(j));
             // The row's rays in texel order, neighbours side by side, in batches of at most one
             // work item of the batch query (so that it runs on this thread, not split).
@@ -138,9 +143,9 @@ impl ShadowMap {
             }
             Ok(())
         };
-        // 1 where a texel's ray meets nothing.
-        let mut nearest = vec![1.0; side * side];
-        let mut second = vec![1.0; if options.second_depth { side * side } else { 0 }];
+        // Zeroed pages from the allocator; each row fills its own in parallel.
+        let mut nearest = vec![0.0; side * side];
+        let mut second = vec![0.0; if options.second_depth { side * side } else { 0 }];
         let rows = nearest.par_chunks_mut(side).enumerate();
         if options.second_depth {
             rows.zip(second.par_chunks_mut(side))
