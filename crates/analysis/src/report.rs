@@ -76,16 +76,28 @@ fn ms(d: std::time::Duration) -> f64 {
 /// [`AnalysisError::Plot`] if a figure or picture cannot be drawn, [`AnalysisError::Raster`] if a
 /// picture cannot be encoded.
 pub fn report(study: &Study) -> Result<Report, AnalysisError> {
-    let figure = pareto(study);
-    let pareto_svg = shadowlab_plot::render_svg(&figure)?;
-    let pareto_png = shadowlab_plot::render_png(&pareto_svg)?;
-    let view_axis = if study.view_axis.is_empty() {
-        None
-    } else {
-        let svg = shadowlab_plot::render_svg(&view_axis_figure(study))?;
-        let png = shadowlab_plot::render_png(&svg)?;
-        Some((svg, png))
-    };
+    // The figures and the pictures are drawn and encoded side by side: each is its own file.
+    let ((pareto, view_axis), pictures) = rayon::join(
+        || {
+            rayon::join(
+                || -> Result<_, AnalysisError> {
+                    let svg = shadowlab_plot::render_svg(&pareto(study))?;
+                    let png = shadowlab_plot::render_png(&svg)?;
+                    Ok((svg, png))
+                },
+                || -> Result<_, AnalysisError> {
+                    if study.view_axis.is_empty() {
+                        return Ok(None);
+                    }
+                    let svg = shadowlab_plot::render_svg(&view_axis_figure(study))?;
+                    let png = shadowlab_plot::render_png(&svg)?;
+                    Ok(Some((svg, png)))
+                },
+            )
+        },
+        || crate::pictures::files(study),
+    );
+    let ((pareto_svg, pareto_png), view_axis, pictures) = (pareto?, view_axis?, pictures?);
     let blocks = document(study);
     let html = crate::html::page(
         study,
@@ -96,7 +108,7 @@ pub fn report(study: &Study) -> Result<Report, AnalysisError> {
     Ok(Report {
         markdown: document::markdown(&blocks),
         html,
-        pictures: crate::pictures::files(study)?,
+        pictures,
         csv: csv(study)?,
         json: serde_json::to_string_pretty(&json(study)).expect("plain data"),
         pareto_svg,
