@@ -8,6 +8,7 @@
 //! | [`gmnpr`] | GMNPR *Theory to Practice: Generalized Minimum-Norm Perspective Shadow Maps*, ICEC 2007, LNCS 4740, 66–78 |
 //! | [`esm`] | ESM Annen, Mertens, Seidel, Flerackers & Kautz, *Exponential Shadow Maps*, Graphics Interface 2008 |
 //! | [`evsm`] | EVSM Lauritzen & McCool, *Layered Variance Shadow Maps*, Graphics Interface 2008 (the exponential warps), with VSM's bound |
+//! | [`msm`] | MSM Peters & Klein, *Moment Shadow Mapping*, I3D 2015, doi 10.1145/2699276.2699277 (Hamburger 4MSM, depths in `[0, 1]`) |
 //! | [`model`] | the 2-D view-frustum model shared by CAD eqs. 10–12 and GMNPR eq. 2 |
 //! | [`rule`] | all parameter choices side by side, and the true minimax of the model |
 //!
@@ -64,6 +65,7 @@ pub mod gmnpr;
 pub mod lispsm;
 pub mod logarithmic;
 pub mod model;
+pub mod msm;
 pub mod rule;
 pub mod splits;
 pub mod vsm;
