@@ -9,6 +9,7 @@
 //! | [`esm`] | ESM Annen, Mertens, Seidel, Flerackers & Kautz, *Exponential Shadow Maps*, Graphics Interface 2008 |
 //! | [`evsm`] | EVSM Lauritzen & McCool, *Layered Variance Shadow Maps*, Graphics Interface 2008 (the exponential warps), with VSM's bound |
 //! | [`msm`] | MSM Peters & Klein, *Moment Shadow Mapping*, I3D 2015, doi 10.1145/2699276.2699277 (Hamburger 4MSM, depths in `[0, 1]`) |
+//! | [`filterable`] | the filterable maps side by side (VSM, ESM, EVSM2, EVSM4, MSM): memory per texel, shared depth samples |
 //! | [`model`] | the 2-D view-frustum model shared by CAD eqs. 10–12 and GMNPR eq. 2 |
 //! | [`rule`] | all parameter choices side by side, and the true minimax of the model |
 //!
@@ -72,5 +73,6 @@ pub mod vsm;
 
 pub use domain::{DepthRange, HalfFov, LightAngle, WarpParameter};
 pub use error::ParamError;
+pub use filterable::FilterableMethod;
 pub use model::{FrustumModel, ModelCase};
 pub use rule::{ParameterRule, RuleEvaluation};
