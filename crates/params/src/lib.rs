@@ -6,6 +6,10 @@
 //! | [`lispsm`], [`logarithmic`] | LiSPSM Wimmer, Scherzer, Purgathofer, *Light Space Perspective Shadow Maps*, EGSR 2004, doi 10.2312/EGWR/EGSR04/143-151; the logarithmic ideal after Lloyd et al., ACM TOG 27(4), 2008 |
 //! | [`cad`], [`splits`], [`bias`], [`vsm`] | CAD Barroso & Celes, *Improved Real-Time Shadow Mapping for CAD Models*, SIBGRAPI 2007, doi 10.1109/SIBGRAPI.2007.36 |
 //! | [`gmnpr`] | GMNPR *Theory to Practice: Generalized Minimum-Norm Perspective Shadow Maps*, ICEC 2007, LNCS 4740, 66–78 |
+//! | [`esm`] | ESM Annen, Mertens, Seidel, Flerackers & Kautz, *Exponential Shadow Maps*, Graphics Interface 2008 |
+//! | [`evsm`] | EVSM Lauritzen & McCool, *Layered Variance Shadow Maps*, Graphics Interface 2008 (the exponential warps), with VSM's bound |
+//! | [`msm`] | MSM Peters & Klein, *Moment Shadow Mapping*, I3D 2015, doi 10.1145/2699276.2699277 (Hamburger 4MSM, depths in `[0, 1]`) |
+//! | [`filterable`] | the filterable maps side by side (VSM, ESM, EVSM2, EVSM4, MSM): memory per texel, shared depth samples |
 //! | [`model`] | the 2-D view-frustum model shared by CAD eqs. 10–12 and GMNPR eq. 2 |
 //! | [`rule`] | all parameter choices side by side, and the true minimax of the model |
 //!
@@ -55,15 +59,20 @@ pub mod bias;
 pub mod cad;
 mod domain;
 mod error;
+pub mod esm;
+pub mod evsm;
+pub mod filterable;
 pub mod gmnpr;
 pub mod lispsm;
 pub mod logarithmic;
 pub mod model;
+pub mod msm;
 pub mod rule;
 pub mod splits;
 pub mod vsm;
 
 pub use domain::{DepthRange, HalfFov, LightAngle, WarpParameter};
 pub use error::ParamError;
+pub use filterable::FilterableMethod;
 pub use model::{FrustumModel, ModelCase};
 pub use rule::{ParameterRule, RuleEvaluation};

@@ -22,6 +22,9 @@ pub struct ShiftedMoments {
 }
 
 impl ShiftedMoments {
+    /// Two scalars per texel: `E[x]` and `E[x²]` (as shifted moments, `M1` and `M2`).
+    pub const MOMENTS_PER_TEXEL: usize = 2;
+
     /// From stored moments. `Err` names `reference`, `m1` or `m2`.
     pub fn new(reference: f64, m1: f64, m2: f64) -> Result<Self, ParamError> {
         ParamError::finite("reference", reference)?;

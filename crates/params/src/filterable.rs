@@ -1,0 +1,217 @@
+//! The filterable shadow maps side by side: what each stores per texel, and the depth samples their
+//! moments are built from.
+//!
+//! | method | module | type | moments per texel |
+//! |---|---|---|---|
+//! | VSM, Donnelly & Lauritzen 2006 (the CAD survey's eq. 2) | [`crate::vsm`] | [`crate::vsm::ShiftedMoments`] | 2 |
+//! | ESM, Annen et al. 2008 | [`crate::esm`] | [`crate::esm::ExponentialMoment`] | 1 |
+//! | EVSM with two moments, Lauritzen & McCool 2008 | [`crate::evsm`] | [`crate::evsm::Evsm2Moments`] | 2 |
+//! | EVSM with four moments, Lauritzen & McCool 2008 | [`crate::evsm`] | [`crate::evsm::Evsm4Moments`] | 4 |
+//! | MSM, Peters & Klein 2015 (Hamburger 4MSM) | [`crate::msm`] | [`crate::msm::MsmMoments`] | 4 |
+//!
+//! Every one of them replaces the binary shadow test of one depth by a function of a few moments
+//! of the depths under the filter kernel, so the map can be filtered (box, Gaussian, mipmaps,
+//! summed-area tables) *before* the test. The price is that the moments do not determine the depth
+//! distribution: each method reconstructs a lit fraction that errs in its own way. VSM, EVSM and
+//! MSM return upper bounds on the lit fraction (MSM's of the distribution its bias `α` mixes in),
+//! so they leak light; ESM tends to the exact value as its exponent grows only for a receiver
+//! behind every occluder, and leaks elsewhere.
+//!
+//! # Domain
+//! Depths `d` and receiver depths `t` are light-space depths normalised to `[0, 1]`, as stored in a
+//! shadow map (0 at the near plane, 1 at the far plane). The constructors of ESM, EVSM and MSM
+//! reject depths and references outside `[0, 1]`; the exponent limit
+//! ([`crate::evsm::MAX_EXPONENT`]) and MSM's bias target are stated for that interval. Receiver
+//! depths may be any finite number (a receiver outside the map's range is answered by the same
+//! formula, never by a NaN).
+//!
+//! # Weights
+//! `from_weighted_depths` takes one non-negative weight per depth (a filter kernel's taps); the
+//! moments are the weighted means `Σ wᵢ f(dᵢ) / Σ wᵢ`. `from_depths` gives every depth the same
+//! weight.
+
+use crate::error::ParamError;
+
+/// A filterable shadow-map method, without its parameters.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum FilterableMethod {
+    /// Variance shadow maps: `E[d]`, `E[d²]` and the Cantelli bound ([`crate::vsm`]).
+    Vsm,
+    /// Exponential shadow maps: `E[exp(c·d)]` ([`crate::esm`]).
+    Esm,
+    /// Exponential variance shadow maps with the positive warp only ([`crate::evsm::Evsm2Moments`]).
+    Evsm2,
+    /// Exponential variance shadow maps with both warps ([`crate::evsm::Evsm4Moments`]).
+    Evsm4,
+    /// Moment shadow maps, the Hamburger 4MSM reconstruction ([`crate::msm`]).
+    Msm,
+}
+
+impl FilterableMethod {
+    /// Every method, in the order of the table above (VSM first).
+    pub const ALL: [Self; 5] = [Self::Vsm, Self::Esm, Self::Evsm2, Self::Evsm4, Self::Msm];
+
+    /// The name of the method as a filter: `vsm`, `esm`, `evsm2`, `evsm4`, `msm`.
+    #[must_use]
+    pub const fn key(self) -> &'static str {
+        match self {
+            Self::Vsm => "vsm",
+            Self::Esm => "esm",
+            Self::Evsm2 => "evsm2",
+            Self::Evsm4 => "evsm4",
+            Self::Msm => "msm",
+        }
+    }
+
+    /// The method whose [`Self::key`] is `key`, if any.
+    #[must_use]
+    pub fn from_key(key: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|m| m.key() == key)
+    }
+
+    /// The number of scalar moments each texel stores: 1 for ESM, 2 for VSM and EVSM2, 4 for EVSM4
+    /// and MSM. Bytes per texel are this times the bytes of the storage format (2 for 16-bit, 4 for
+    /// 32-bit channels).
+    #[must_use]
+    pub const fn moments_per_texel(self) -> usize {
+        match self {
+            Self::Vsm => crate::vsm::ShiftedMoments::MOMENTS_PER_TEXEL,
+            Self::Esm => crate::esm::ExponentialMoment::MOMENTS_PER_TEXEL,
+            Self::Evsm2 => crate::evsm::Evsm2Moments::MOMENTS_PER_TEXEL,
+            Self::Evsm4 => crate::evsm::Evsm4Moments::MOMENTS_PER_TEXEL,
+            Self::Msm => crate::msm::MsmMoments::MOMENTS_PER_TEXEL,
+        }
+    }
+}
+
+/// `Ok(value)` if `value` is a depth in `[0, 1]`, else an error naming `name`.
+pub(crate) fn unit_depth(name: &'static str, value: f64) -> Result<f64, ParamError> {
+    ParamError::finite(name, value)?;
+    ParamError::require(name, value, (0.0..=1.0).contains(&value), || {
+        "in [0, 1]".into()
+    })
+}
+
+/// Validated depth samples: every depth in `[0, 1]`, one finite weight `≥ 0` per depth (all 1 when
+/// `weights` is `None`), and a finite positive total weight.
+pub(crate) struct Samples<'a> {
+    depths: &'a [f64],
+    weights: Option<&'a [f64]>,
+    total: f64,
+}
+
+impl<'a> Samples<'a> {
+    /// `Err` names `depths` (empty, or a value not in `[0, 1]`) or `weights` (a length different from
+    /// that of `depths`, a value that is negative or not finite, or a total that is 0 or overflows).
+    pub(crate) fn new(depths: &'a [f64], weights: Option<&'a [f64]>) -> Result<Self, ParamError> {
+        if depths.is_empty() {
+            return Err(ParamError::OutOfDomain {
+                name: "depths",
+                value: 0.0,
+                requirement: "non-empty".into(),
+            });
+        }
+        for &d in depths {
+            unit_depth("depths", d)?;
+        }
+        let total = match weights {
+            None => depths.len() as f64,
+            Some(w) => {
+                if w.len() != depths.len() {
+                    return Err(ParamError::OutOfDomain {
+                        name: "weights",
+                        value: w.len() as f64,
+                        requirement: format!("one per depth ({})", depths.len()),
+                    });
+                }
+                let mut total = 0.0;
+                for &x in w {
+                    ParamError::finite("weights", x)?;
+                    ParamError::require("weights", x, x >= 0.0, || "at least 0".into())?;
+                    total += x;
+                }
+                ParamError::finite("weights", total)?;
+                ParamError::require("weights", total, total > 0.0, || "of positive sum".into())?
+            }
+        };
+        Ok(Self {
+            depths,
+            weights,
+            total,
+        })
+    }
+
+    /// The sum of the weights, `W = Σ wᵢ` (finite, > 0).
+    pub(crate) fn total(&self) -> f64 {
+        self.total
+    }
+
+    /// The pairs `(dᵢ, wᵢ)` in the order given.
+    pub(crate) fn iter(&self) -> impl Iterator<Item = (f64, f64)> + '_ {
+        self.depths
+            .iter()
+            .enumerate()
+            .map(|(i, &d)| (d, self.weights.map_or(1.0, |w| w[i])))
+    }
+
+    /// `Σ wᵢ f(dᵢ) / W`, summed in order, then clamped to the range of `f` over the samples of
+    /// positive weight (where a mean lies; the clamp removes only rounding, and makes the mean of
+    /// equal values exactly that value). The weights are divided by `W` first, so a term is never
+    /// larger than the largest `|f(dᵢ)|` (no overflow from large weights).
+    pub(crate) fn mean(&self, f: impl Fn(f64) -> f64) -> f64 {
+        let (mut low, mut high) = (f64::INFINITY, f64::NEG_INFINITY);
+        let mut sum = 0.0;
+        for (d, w) in self.iter() {
+            let value = f(d);
+            if w > 0.0 {
+                low = low.min(value);
+                high = high.max(value);
+            }
+            sum += (w / self.total) * value;
+        }
+        sum.clamp(low, high)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn keys_round_trip_and_memory_is_as_the_issue_states() {
+        for m in FilterableMethod::ALL {
+            assert_eq!(FilterableMethod::from_key(m.key()), Some(m));
+        }
+        assert_eq!(FilterableMethod::from_key("pcf"), None);
+        let per_texel: Vec<usize> = FilterableMethod::ALL
+            .iter()
+            .map(|m| m.moments_per_texel())
+            .collect();
+        assert_eq!(per_texel, [2, 1, 2, 4, 4]);
+    }
+
+    #[test]
+    fn samples_name_the_bad_input() {
+        let bad = |depths: &[f64], weights: Option<&[f64]>| {
+            Samples::new(depths, weights).err().map(|e| e.parameter())
+        };
+        assert_eq!(bad(&[], None), Some("depths"));
+        assert_eq!(bad(&[0.5, 1.5], None), Some("depths"));
+        assert_eq!(bad(&[0.5, f64::NAN], None), Some("depths"));
+        assert_eq!(bad(&[0.5], Some(&[1.0, 2.0])), Some("weights"));
+        assert_eq!(bad(&[0.5], Some(&[-1.0])), Some("weights"));
+        assert_eq!(bad(&[0.5, 0.6], Some(&[0.0, 0.0])), Some("weights"));
+        assert_eq!(
+            bad(&[0.5, 0.6], Some(&[f64::MAX, f64::MAX])),
+            Some("weights")
+        );
+        assert_eq!(bad(&[0.0, 1.0], Some(&[0.0, 2.0])), None);
+        let s = Samples::new(&[0.25, 0.75], Some(&[1.0, 3.0])).unwrap();
+        assert_eq!(s.mean(|d| d), 0.625);
+        // Equal values have exactly that mean, whatever the rounding of the weights.
+        let depths = [0.1 + 0.2; 7];
+        let weights = [0.3, 0.1, 0.7, 0.1, 0.9, 0.3, 0.11];
+        let s = Samples::new(&depths, Some(&weights)).unwrap();
+        assert_eq!(s.mean(|d| d), depths[0]);
+    }
+}
