@@ -509,7 +509,7 @@ fn csv(study: &Study) -> Result<String, AnalysisError> {
             technique_label(s.technique),
             s.resolution,
             s.partitions,
-            filter_label(&s.filter)
+            csv_field(&filter_label(&s.filter))
         );
         match &m.outcome {
             Ok(o) => {
