@@ -163,7 +163,8 @@ pub(crate) struct AnalyzeArgs {
     #[arg(long, allow_hyphen_values = true, value_parser = split_scheme)]
     pub(crate) split_scheme: Option<Splits>,
     /// Filters, comma-separated: nearest, pcf:K, disk:TAPS;RADIUS (use ; between a filter's
-    /// numbers here), vsm:K.
+    /// numbers here), vsm:K, and the filterable maps esm:K;C, evsm2:K;C, evsm4:K;C+;C-,
+    /// msm:K;ALPHA.
     #[arg(
         long,
         value_delimiter = ',',
@@ -417,7 +418,8 @@ pub(crate) struct ShadowArgs {
     #[arg(long, allow_hyphen_values = true, value_parser = bias_spec)]
     pub(crate) bias: Option<Bias>,
     /// Filter: nearest, pcf:K, disk:TAPS,RADIUS or disk:TAPS,RADIUS,SEED, vsm:K or
-    /// vsm:K,MIN_VARIANCE. Default: nearest.
+    /// vsm:K,MIN_VARIANCE; the filterable maps esm:K,C, evsm2:K,C[,MIN_VARIANCE],
+    /// evsm4:K,C+,C-[,MIN_VARIANCE], msm:K,ALPHA. Default: nearest.
     #[arg(long, allow_hyphen_values = true, value_parser = filter_spec)]
     pub(crate) filter: Option<Filter>,
     /// Depth format of the maps: f32, reversed-f32, unorm24, unorm16. Default: f32.

@@ -506,3 +506,74 @@ fn analyze_sweeps_biases_and_refuses_presets() {
     );
     assert!(fs::read_dir(refused.path()).unwrap().next().is_none());
 }
+
+/// The fields of one CSV record, double-quoted fields unquoted (RFC 4180).
+fn csv_record(line: &str) -> Vec<String> {
+    let (mut fields, mut field, mut quoted, mut chars) =
+        (Vec::new(), String::new(), false, line.chars().peekable());
+    while let Some(c) = chars.next() {
+        match (c, quoted) {
+            ('"', true) if chars.peek() == Some(&'"') => {
+                field.push('"');
+                chars.next();
+            }
+            ('"', _) => quoted = !quoted,
+            (',', false) => fields.push(std::mem::take(&mut field)),
+            _ => field.push(c),
+        }
+    }
+    fields.push(field);
+    fields
+}
+
+/// The filterable maps run through `analyze` from the command line (`;` between a filter's numbers
+/// in the list), and `results.csv` quotes their labels, which hold commas, so that every record
+/// has the header's columns and names its filter as `--filter` takes it.
+#[test]
+fn analyze_reads_every_filterable_map_and_its_csv_keeps_their_labels_whole() {
+    let scenes = tempfile::tempdir().unwrap();
+    let scene = scene_file(scenes.path());
+    let out = tempfile::tempdir().unwrap();
+    let output = shadowlab(
+        &[
+            "analyze",
+            &scene,
+            "--techniques",
+            "lispsm",
+            "--resolutions",
+            "128",
+            "--filters",
+            "nearest,vsm:3,esm:3;80,evsm2:3;11.08,evsm4:3;11.08;11.08,msm:3;6e-5",
+            "--timing-runs",
+            "1",
+            "--out",
+            out.path().to_str().unwrap(),
+        ],
+        None,
+    );
+    assert!(output.status.success(), "{}", stderr(&output));
+    let csv = fs::read_to_string(out.path().join("results.csv")).unwrap();
+    let mut lines = csv.lines();
+    let header = csv_record(lines.next().unwrap());
+    let filter = header.iter().position(|c| c == "filter").unwrap();
+    let defined = header.iter().position(|c| c == "defined").unwrap();
+    let filters: Vec<String> = lines
+        .map(|line| {
+            let record = csv_record(line);
+            assert_eq!(record.len(), header.len(), "{line}");
+            assert_eq!(record[defined], "true", "{line}");
+            record[filter].clone()
+        })
+        .collect();
+    assert_eq!(
+        filters,
+        [
+            "nearest",
+            "vsm:3,0.000001",
+            "esm:3,80",
+            "evsm2:3,11.08,0.000001",
+            "evsm4:3,11.08,11.08,0.000001",
+            "msm:3,0.00006"
+        ]
+    );
+}

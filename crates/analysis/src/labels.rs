@@ -1,7 +1,7 @@
 //! How techniques and filters are named in tables, pictures and pages (the report, its HTML page,
 //! the pictures' titles, sweeps), in one place below all of them.
 
-use shadowlab_shadow::{Filter, Technique};
+use shadowlab_shadow::{Filter, MomentMethod, Technique};
 
 /// The technique's name in tables: its key, and its parameter after a slash where it is not the
 /// default (`lispsm/minimax`, `logarithmic/faces`, `optimal/refit`).
@@ -21,5 +21,18 @@ pub fn filter_label(filter: &Filter) -> String {
         Filter::Pcf { size } => format!("pcf:{size}"),
         Filter::Disk { taps, radius, seed } => format!("disk:{taps},{radius},{seed}"),
         Filter::Vsm { size, min_variance } => format!("vsm:{size},{min_variance}"),
+        Filter::Moments { size, method } => match method {
+            MomentMethod::Esm { exponent } => format!("esm:{size},{exponent}"),
+            MomentMethod::Evsm2 {
+                exponent,
+                min_variance,
+            } => format!("evsm2:{size},{exponent},{min_variance}"),
+            MomentMethod::Evsm4 {
+                positive,
+                negative,
+                min_variance,
+            } => format!("evsm4:{size},{positive},{negative},{min_variance}"),
+            MomentMethod::Msm { alpha } => format!("msm:{size},{alpha}"),
+        },
     }
 }

@@ -60,7 +60,7 @@ pub use cascade_fit::{CascadeFit, Snap};
 pub use error::ShadowError;
 pub use faces::FaceRegion;
 pub use input::{Eye, FocusPolicy, LightSource, PlanInput};
-pub use lookup::{DEFAULT_DISK_SEED, DEFAULT_MIN_VARIANCE, Filter, Lookup};
+pub use lookup::{DEFAULT_DISK_SEED, DEFAULT_MIN_VARIANCE, Filter, Lookup, MomentMethod};
 pub use map::{MapOptions, ShadowMap};
 pub use partition::{CullingSphere, Partition};
 pub use plan::{Splits, plan, plan_partitions};
