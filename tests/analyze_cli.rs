@@ -528,7 +528,9 @@ fn csv_record(line: &str) -> Vec<String> {
 
 /// The filterable maps run through `analyze` from the command line (`;` between a filter's numbers
 /// in the list), and `results.csv` quotes their labels, which hold commas, so that every record
-/// has the header's columns and names its filter as `--filter` takes it.
+/// has the header's columns and names its filter as `--filter` takes it; each filterable map's
+/// errors against the nearest lookup of its map are filled in (leaks, over-darkening, their
+/// extent, its bytes per texel), and left empty for the nearest filter.
 #[test]
 fn analyze_reads_every_filterable_map_and_its_csv_keeps_their_labels_whole() {
     let scenes = tempfile::tempdir().unwrap();
@@ -557,11 +559,28 @@ fn analyze_reads_every_filterable_map_and_its_csv_keeps_their_labels_whole() {
     let header = csv_record(lines.next().unwrap());
     let filter = header.iter().position(|c| c == "filter").unwrap();
     let defined = header.iter().position(|c| c == "defined").unwrap();
+    let column = |name: &str| header.iter().position(|c| c == name).unwrap();
+    let (leaks, falsely_lit, bytes) = (
+        column("filter_leaks"),
+        column("falsely_lit"),
+        column("bytes_per_texel"),
+    );
     let filters: Vec<String> = lines
         .map(|line| {
             let record = csv_record(line);
             assert_eq!(record.len(), header.len(), "{line}");
             assert_eq!(record[defined], "true", "{line}");
+            if record[filter] == "nearest" {
+                assert!(
+                    record[leaks].is_empty() && record[bytes].is_empty(),
+                    "{line}"
+                );
+            } else {
+                // A leak is a falsely lit pixel the nearest lookup gets right.
+                let count: u64 = record[leaks].parse().unwrap();
+                assert!(count <= record[falsely_lit].parse().unwrap(), "{line}");
+                assert!(["4", "8", "16"].contains(&record[bytes].as_str()), "{line}");
+            }
             record[filter].clone()
         })
         .collect();

@@ -30,7 +30,9 @@ use crate::aliasing::Footprint;
 use crate::setup_file::{
     DEPTH_IMAGE_SLACK_BYTES, DepthImage, ImageKind, Setup, SetupError, SetupPartition, read_bounded,
 };
-use crate::study::{Measurement, Pictures, Setting, Study, attributed, footprinted, outcome};
+use crate::study::{
+    Measurement, Pictures, Setting, Study, attributed, footprinted, leaked, outcome,
+};
 use crate::temporal::{Stability, shimmer};
 use crate::truth::LIT_THRESHOLD;
 use crate::truth::{exact_truth, scene_bvh};
@@ -203,7 +205,8 @@ pub fn evaluate_observed<E: From<SetupError>>(
         } else {
             Vec::new()
         };
-        let measured = outcome(&truth, &shadows, &footprints, &attribution);
+        let leaks = leaked(&moved, &eye, &truth, &shadows, &setting.filter);
+        let measured = outcome(&truth, &shadows, &footprints, &attribution, leaks);
 
         let states: States = match shadows.lit.first() {
             Some(lit) => eye

@@ -57,6 +57,7 @@ pub mod export;
 mod html;
 pub mod images;
 mod labels;
+pub mod leaks;
 pub mod pictures;
 pub mod report;
 pub mod setup_file;

@@ -270,6 +270,33 @@ fn document(study: &Study) -> Vec<Block> {
              boundary / aliasing",
             &|o| o.causes.joined(" / "),
         );
+        let leaks = study
+            .measurements
+            .iter()
+            .filter(|m| {
+                m.setting.partitions == partitions && filter_label(&m.setting.filter) == filter
+            })
+            .find_map(|m| m.outcome.as_ref().ok().and_then(|o| o.leaks));
+        if let Some(leaks) = leaks {
+            table(
+                &mut doc,
+                &format!(
+                    "The filter's own errors, against the nearest lookup of the same map: light \
+                     leaks / over-darkening; the leaks' distance to the true shadow's edge, \
+                     pixels: 99th percentile / max ({}, {} bytes per texel at 32-bit moments)",
+                    leaks.method.key(),
+                    leaks.bytes_per_texel
+                ),
+                &|o| {
+                    o.leaks.map_or("—".into(), |l| {
+                        format!(
+                            "{} / {}; {:.1} / {:.1}",
+                            l.leaks, l.over_darkening, l.extent.p99, l.extent.max
+                        )
+                    })
+                },
+            );
+        }
         table(
             &mut doc,
             "Texel footprint on screen (pixels per texel): max / 99th percentile / mean",
@@ -497,7 +524,8 @@ fn csv(study: &Study) -> Result<String, AnalysisError> {
          acne,peter_panning,seam_band,seam_boundary,aliasing,seam,\
          footprint_max,footprint_p99,footprint_mean,perspective_max,perspective_p99,perspective_mean,\
          projection_max,projection_p99,projection_mean,planning_ms,shadow_pass_ms,lookup_ms,time_ms,\
-         time_spread_ms,attribution_ms,footprints_ms\n",
+         time_spread_ms,attribution_ms,footprints_ms,filter_leaks,filter_over_darkening,\
+         leak_extent_max,leak_extent_p99,leak_extent_mean,bytes_per_texel\n",
     );
     // The columns after `visible`, empty where the technique is not defined.
     let measured_columns = out.split(',').skip_while(|c| *c != "visible").count() - 1;
@@ -530,6 +558,18 @@ fn csv(study: &Study) -> Result<String, AnalysisError> {
                 }
                 fields.push(format!("{:?}", ms(o.attribution)));
                 fields.push(format!("{:?}", ms(o.footprints)));
+                // Empty for the filters that are not filterable maps.
+                let leaks = o.leaks.map(|l| {
+                    [
+                        l.leaks.to_string(),
+                        l.over_darkening.to_string(),
+                        format!("{:?}", l.extent.max),
+                        format!("{:?}", l.extent.p99),
+                        format!("{:?}", l.extent.mean),
+                        l.bytes_per_texel.to_string(),
+                    ]
+                });
+                fields.extend(leaks.unwrap_or_default());
                 writeln!(out, "{}", fields.join(",")).unwrap();
             }
             Err(_) => writeln!(
@@ -580,6 +620,10 @@ fn json(study: &Study) -> Value {
                         "texels": o.texels,
                         "footprint": {"total": stats(&o.footprint[0]), "perspective": stats(&o.footprint[1]), "projection": stats(&o.footprint[2])},
                         "ms": {"planning": ms(o.planning), "shadow_pass": ms(o.shadow_pass), "lookup": ms(o.lookup), "total": ms(o.time()), "spread": ms(o.time_spread), "attribution": ms(o.attribution), "footprints": ms(o.footprints)},
+                        "filter_leaks": o.leaks.map(|l| json!({
+                            "method": l.method.key(), "leaks": l.leaks, "over_darkening": l.over_darkening,
+                            "extent": stats(&l.extent), "bytes_per_texel": l.bytes_per_texel,
+                        })),
                     })
                 }
                 Err(reason) => json!({"setting": base, "not_defined": reason}),

@@ -9,7 +9,7 @@ use shadowlab_scene::Scene;
 use shadowlab_shadow::optimal::OptimalOptions;
 use shadowlab_shadow::{
     Bias, Filter, FocusPolicy, FrameOptions, LightShadow, Lookup, PlanOptions, ShadowError,
-    Shadows, Splits, Technique, Timings, eye_pass, render_shadows, scene_eye, served,
+    Shadows, Splits, Technique, Timings, eye_pass, lit_with, render_shadows, scene_eye, served,
     view::shade_eye,
 };
 use shadowlab_trace::Bvh;
@@ -19,6 +19,7 @@ use crate::attribution::{Attribution, Causes, attribute, cause_image};
 use crate::classify::{Misclassification, difference_image, disagreement, misclassification};
 use crate::error::AnalysisError;
 use crate::images::{HeatScale, heatmap, value_range};
+use crate::leaks::{FilterLeaks, filter_leaks, filterable_method};
 use crate::truth::{Truth, exact_truth, map_truth, scene_bvh};
 use crate::view_axis::{AxisCurve, curves};
 
@@ -154,6 +155,9 @@ pub struct Outcome {
     /// the planning, shadow-pass and lookup times are the median run's, and a time is known to
     /// within ± this. Zero for one run.
     pub time_spread: Duration,
+    /// For a filterable map's filter (VSM, ESM, EVSM, MSM): its errors against the nearest
+    /// lookup of the same maps ([`crate::leaks`]); `None` for the other filters.
+    pub leaks: Option<FilterLeaks>,
 }
 
 impl Outcome {
@@ -339,7 +343,8 @@ pub fn measure(
 ) -> Result<Outcome, AnalysisError> {
     let attributed = attributed(scene, eye, truth, shadows, |_, _| filter, bvh)?;
     let footprints = footprinted(scene, eye, shadows);
-    Ok(outcome(truth, shadows, &footprints, &attributed))
+    let leaks = leaked(scene, eye, truth, shadows, &filter);
+    Ok(outcome(truth, shadows, &footprints, &attributed, leaks))
 }
 
 /// The per-pixel footprints of `shadows` ([`frame_footprints`]) and the time they took.
@@ -351,6 +356,37 @@ pub(crate) fn footprinted(
     let start = Instant::now();
     let per_pixel = frame_footprints(scene, eye, shadows);
     (per_pixel, start.elapsed())
+}
+
+/// A filterable map's errors against the nearest lookup of the same maps ([`filter_leaks`]), if
+/// `filter` is one: `shadows`' maps read again with the nearest filter and their own biases.
+pub(crate) fn leaked(
+    scene: &Scene,
+    eye: &EyeImage,
+    truth: &Truth,
+    shadows: &Shadows,
+    filter: &Filter,
+) -> Option<FilterLeaks> {
+    let method = filterable_method(filter)?;
+    let view = scene_eye(scene);
+    let nearest: Vec<Vec<f64>> = shadows
+        .lights
+        .iter()
+        .map(|light| {
+            let nearest: Vec<Lookup> = light
+                .lookups
+                .iter()
+                .map(|l| Lookup::new(l.bias, Filter::Nearest))
+                .collect();
+            lit_with(light, &nearest, &view, eye)
+        })
+        .collect();
+    Some(filter_leaks(
+        truth,
+        eye.width as usize,
+        method,
+        (&shadows.lit, &nearest),
+    ))
 }
 
 /// The attribution of `shadows`' errors ([`attribute`]; `filter(light, partition)`) and its time.
@@ -382,6 +418,7 @@ pub(crate) fn outcome(
     shadows: &Shadows,
     (per_pixel, footprint_time): &(Vec<Option<Footprint>>, Duration),
     (attribution, attribution_time): &(Attribution, Duration),
+    leaks: Option<FilterLeaks>,
 ) -> Outcome {
     let start = Instant::now();
     // filter_map, not flatten: rayon's flatten makes a parallel iterator of every Option.
@@ -411,6 +448,7 @@ pub(crate) fn outcome(
         attribution: *attribution_time,
         footprints,
         time_spread: Duration::ZERO,
+        leaks,
     }
 }
 
@@ -520,7 +558,8 @@ pub fn run_observed<E: From<AnalysisError>>(
                     shadows: &shadows,
                     footprints: &footprints.0,
                 })?;
-                let mut measured = outcome(&truth, &shadows, &footprints, &attribution);
+                let leaks = leaked(scene, &eye.image, &truth, &shadows, &setting.filter);
+                let mut measured = outcome(&truth, &shadows, &footprints, &attribution, leaks);
                 let mut runs = vec![shadows.timings];
                 // The timing runs need none of the first run's buffers.
                 drop((shadows, footprints, attribution));
@@ -608,6 +647,7 @@ mod tests {
             attribution: Duration::ZERO,
             footprints: Duration::ZERO,
             time_spread: Duration::ZERO,
+            leaks: None,
         };
         time_from_runs(&mut o, runs);
         o

@@ -67,7 +67,7 @@ pub use plan::{Splits, plan, plan_partitions};
 pub use render::{
     FLAT_SCENE_THICKNESS, FLAT_SCENE_ULPS, Frame, FrameOptions, GivenDepths, LightMaps,
     LightShadow, MapSource, PartitionMap, PlanOptions, Shadows, Timings, eye_image, eye_pass,
-    lit_at, plan_frame, plan_light, render_frame, render_shadows, scene_box, scene_eye,
+    lit_at, lit_with, plan_frame, plan_light, render_frame, render_shadows, scene_box, scene_eye,
     scene_input, selection_of, shadows_of,
 };
 pub use selection::{Beyond, Fade, FadeCurve, Selection, SelectionRule};

@@ -555,7 +555,17 @@ const LOOKUP_ROWS: usize = 8;
 /// frame's points in the previous frame's maps (the temporal study's surface shimmer).
 #[must_use]
 pub fn lit_at(shadow: &LightShadow, eye: &Eye, image: &EyeImage) -> Vec<f64> {
-    let lookups = &shadow.lookups;
+    lit_with(shadow, &shadow.lookups, eye, image)
+}
+
+/// [`lit_at`] with each map read by `lookups[k]` instead of its own lookup (one per map): the same
+/// maps read another way, e.g. with the nearest filter to tell a filter's errors from the map's.
+///
+/// # Panics
+/// If `lookups` does not hold one lookup per map.
+#[must_use]
+pub fn lit_with(shadow: &LightShadow, lookups: &[Lookup], eye: &Eye, image: &EyeImage) -> Vec<f64> {
+    assert_eq!(lookups.len(), shadow.maps.len(), "one lookup per map");
     let width = image.width as usize;
     let mut lit = vec![1.0; image.triangle.len()];
     lit.par_chunks_mut(width * LOOKUP_ROWS)
