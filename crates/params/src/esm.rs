@@ -39,8 +39,8 @@
 //! done exactly. Stored values about another reference `r` (`E[exp(c·(d − r))]`, the form a GPU
 //! stores with `r = 0`) are accepted by [`ExponentialMoment::new`].
 
+use crate::depth_samples::{Samples, unit_depth};
 use crate::error::ParamError;
-use crate::filterable::{Samples, unit_depth};
 
 /// The filtered ESM moment for an exponent `c`, held as the exponential mean depth
 /// `d̄ = (1/c)·ln E[exp(c·d)]`.

@@ -63,8 +63,8 @@
 //! for fp32). Its centring at mid-depth only changes what overflows in 16- and 32-bit storage,
 //! which this module, in f64 and scaled about `r`, does not model.
 
+use crate::depth_samples::{Samples, unit_depth};
 use crate::error::ParamError;
-use crate::filterable::{Samples, unit_depth};
 
 /// The largest exponent accepted: `⌊ln(f64::MAX)/2⌋ = 354`. With depths and reference in `[0, 1]`,
 /// `|c·(d − r)| ≤ c`, so `u² ≤ exp(2c) ≤ exp(708)` stays finite.

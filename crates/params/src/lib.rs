@@ -57,6 +57,7 @@
 
 pub mod bias;
 pub mod cad;
+mod depth_samples;
 mod domain;
 mod error;
 pub mod esm;

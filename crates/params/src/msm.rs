@@ -79,8 +79,8 @@
 //! storage rounding. Peters & Klein's depth bias (subtracting a constant from `z_f`) is the
 //! caller's, as for every other lookup.
 
+use crate::depth_samples::{Samples, unit_depth};
 use crate::error::ParamError;
-use crate::filterable::{Samples, unit_depth};
 
 /// The four moments of a set of depths `d` about a reference `r`: `b_k = E[(d − r)^k]`, `k = 1..4`.
 ///
