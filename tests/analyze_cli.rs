@@ -530,7 +530,8 @@ fn csv_record(line: &str) -> Vec<String> {
 /// in the list), and `results.csv` quotes their labels, which hold commas, so that every record
 /// has the header's columns and names its filter as `--filter` takes it; each filterable map's
 /// errors against the nearest lookup of its map are filled in (leaks, over-darkening, their
-/// extent, its bytes per texel), and left empty for the nearest filter.
+/// extent, its bytes per texel), and left empty for the nearest filter; VSM at two prefilter sides
+/// draws the figure of leaks against the side.
 #[test]
 fn analyze_reads_every_filterable_map_and_its_csv_keeps_their_labels_whole() {
     let scenes = tempfile::tempdir().unwrap();
@@ -545,7 +546,7 @@ fn analyze_reads_every_filterable_map_and_its_csv_keeps_their_labels_whole() {
             "--resolutions",
             "128",
             "--filters",
-            "nearest,vsm:3,esm:3;80,evsm2:3;11.08,evsm4:3;11.08;11.08,msm:3;6e-5",
+            "nearest,vsm:3,vsm:5,esm:3;80,evsm2:3;11.08,evsm4:3;11.08;11.08,msm:3;6e-5",
             "--timing-runs",
             "1",
             "--out",
@@ -589,10 +590,17 @@ fn analyze_reads_every_filterable_map_and_its_csv_keeps_their_labels_whole() {
         [
             "nearest",
             "vsm:3,0.000001",
+            "vsm:5,0.000001",
             "esm:3,80",
             "evsm2:3,11.08,0.000001",
             "evsm4:3,11.08,11.08,0.000001",
             "msm:3,0.00006"
         ]
+    );
+    assert!(out.path().join("leaks.svg").is_file() && out.path().join("leaks.png").is_file());
+    let report = fs::read_to_string(out.path().join("report.md")).unwrap();
+    assert!(
+        report.contains("light leaks against the prefilter's side") && report.contains("leaks.png"),
+        "{report}"
     );
 }

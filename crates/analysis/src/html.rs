@@ -560,16 +560,17 @@ fn capitalised(text: &str) -> String {
 }
 
 /// The page of `study`: `blocks` (the document `report.md` is written from), with the figures
-/// inlined from `pareto_svg` and `view_axis_svg`, and the pictures' section.
+/// inlined from `pareto_svg`, `view_axis_svg` and `leaks_svg`, and the pictures' section.
 pub(crate) fn page(
     study: &Study,
     blocks: &[Block],
     pareto_svg: &str,
     view_axis_svg: Option<&str>,
+    leaks_svg: Option<&str>,
 ) -> String {
-    let figure = |src: &str, alt: &str| match (src, view_axis_svg) {
-        ("pareto.png", _) => inline_figure(pareto_svg, alt),
-        ("view-axis.png", Some(svg)) => inline_figure(svg, alt),
+    let figure = |src: &str, alt: &str| match (src, view_axis_svg, leaks_svg) {
+        ("pareto.png", _, _) => inline_figure(pareto_svg, alt),
+        ("view-axis.png", Some(svg), _) | ("leaks.png", _, Some(svg)) => inline_figure(svg, alt),
         _ => format!(
             "<p><img src=\"{}\" alt=\"{}\"></p>\n",
             escape_html(src),

@@ -34,6 +34,9 @@ pub struct Report {
     /// closed form; `None` when no technique of the study has a view-axis curve (the
     /// scene-optimized map and frustum limiting alone), so there is nothing to draw.
     pub view_axis: Option<(String, Vec<u8>)>,
+    /// `leaks.svg` and `leaks.png`: each filterable map's light leaks against its prefilter's
+    /// side; `None` unless some method was measured at two sides or more ([`leaks_figure`]).
+    pub leaks: Option<(String, Vec<u8>)>,
     /// `report.html`: the same document as one self-contained page (inline style, script and
     /// plots; the pictures by relative path), with sortable tables and the pictures side by side.
     pub html: String,
@@ -44,7 +47,8 @@ pub struct Report {
 impl Report {
     /// Every file of the report, each with its path in the output set (`/`-separated, relative):
     /// `report.md`, `results.csv`, `results.json`, `pareto.svg`, `pareto.png`, `view-axis.svg`
-    /// and `view-axis.png` (if drawn), `report.html`, then the pictures.
+    /// and `view-axis.png` (if drawn), `leaks.svg` and `leaks.png` (if drawn), `report.html`,
+    /// then the pictures.
     #[must_use]
     pub fn files(self) -> Vec<(String, Vec<u8>)> {
         let mut files = vec![
@@ -57,6 +61,10 @@ impl Report {
         if let Some((svg, png)) = self.view_axis {
             files.push(("view-axis.svg".to_owned(), svg.into_bytes()));
             files.push(("view-axis.png".to_owned(), png));
+        }
+        if let Some((svg, png)) = self.leaks {
+            files.push(("leaks.svg".to_owned(), svg.into_bytes()));
+            files.push(("leaks.png".to_owned(), png));
         }
         files.push(("report.html".to_owned(), self.html.into_bytes()));
         files.extend(self.pictures);
@@ -77,33 +85,48 @@ fn ms(d: std::time::Duration) -> f64 {
 /// picture cannot be encoded.
 pub fn report(study: &Study) -> Result<Report, AnalysisError> {
     // The figures and the pictures are drawn and encoded side by side: each is its own file.
-    let ((pareto, view_axis), pictures) = rayon::join(
+    let drawn = |figure: Option<Figure>| -> Result<_, AnalysisError> {
+        let Some(figure) = figure else {
+            return Ok(None);
+        };
+        let svg = shadowlab_plot::render_svg(&figure)?;
+        let png = shadowlab_plot::render_png(&svg)?;
+        Ok(Some((svg, png)))
+    };
+    let (((pareto, view_axis), leaks), pictures) = rayon::join(
         || {
             rayon::join(
-                || -> Result<_, AnalysisError> {
-                    let svg = shadowlab_plot::render_svg(&pareto(study))?;
-                    let png = shadowlab_plot::render_png(&svg)?;
-                    Ok((svg, png))
+                || {
+                    rayon::join(
+                        || -> Result<_, AnalysisError> {
+                            let svg = shadowlab_plot::render_svg(&pareto(study))?;
+                            let png = shadowlab_plot::render_png(&svg)?;
+                            Ok((svg, png))
+                        },
+                        || -> Result<_, AnalysisError> {
+                            if study.view_axis.is_empty() {
+                                return Ok(None);
+                            }
+                            let svg = shadowlab_plot::render_svg(&view_axis_figure(study))?;
+                            let png = shadowlab_plot::render_png(&svg)?;
+                            Ok(Some((svg, png)))
+                        },
+                    )
                 },
-                || -> Result<_, AnalysisError> {
-                    if study.view_axis.is_empty() {
-                        return Ok(None);
-                    }
-                    let svg = shadowlab_plot::render_svg(&view_axis_figure(study))?;
-                    let png = shadowlab_plot::render_png(&svg)?;
-                    Ok(Some((svg, png)))
-                },
+                || drawn(leaks_figure(study)),
             )
         },
         || crate::pictures::files(study),
     );
-    let ((pareto_svg, pareto_png), view_axis, pictures) = (pareto?, view_axis?, pictures?);
+    let ((pareto_svg, pareto_png), view_axis, leaks, pictures) =
+        (pareto?, view_axis?, leaks?, pictures?);
     let blocks = document(study);
     let html = crate::html::page(
         study,
         &blocks,
         &pareto_svg,
         view_axis.as_ref().map(|v| v.0.as_str()),
+        leaks.as_ref().map(|v| v.0.as_str()),
     );
     Ok(Report {
         markdown: document::markdown(&blocks),
@@ -114,6 +137,7 @@ pub fn report(study: &Study) -> Result<Report, AnalysisError> {
         pareto_svg,
         pareto_png,
         view_axis,
+        leaks,
     })
 }
 
@@ -349,6 +373,23 @@ fn document(study: &Study) -> Vec<Block> {
         doc.push(Block::List(items));
     }
     view_axis_section(&mut doc, study);
+    if leaks_figure(study).is_some() {
+        doc.push(Block::Heading(
+            2,
+            vec![text(
+                "Filterable maps: light leaks against the prefilter's side",
+            )],
+        ));
+        doc.push(Block::Figure {
+            alt: "Light leaks against the prefilter's side".into(),
+            src: "leaks.png".into(),
+        });
+        doc.push(paragraph(vec![text(
+            "Per technique, method and maps per light, at the study's highest resolution: the \
+             falsely lit pixels of each filterable map that the nearest lookup of the same map \
+             gets right, against the side of its box prefilter.",
+        )]));
+    }
     doc.push(Block::Heading(2, vec![text("The trade")]));
     doc.push(Block::Figure {
         alt: "Time against misclassified pixels".into(),
@@ -630,6 +671,93 @@ fn json(study: &Study) -> Value {
             }
         }).collect::<Vec<_>>(),
     })
+}
+
+/// Light leaks against the prefilter's side: one line per technique, filterable method, its
+/// parameters and maps per light, through the sides measured at the study's highest resolution
+/// (leaks of 0 drawn at ½ on the log axis); `None` unless some line has two sides or more.
+fn leaks_figure(study: &Study) -> Option<Figure> {
+    let top = study
+        .measurements
+        .iter()
+        .filter(|m| m.outcome.as_ref().is_ok_and(|o| o.leaks.is_some()))
+        .map(|m| m.setting.resolution)
+        .max()?;
+    let mut lines: Vec<(String, Vec<(f64, f64)>)> = Vec::new();
+    for m in &study.measurements {
+        let (Ok(o), true) = (&m.outcome, m.setting.resolution == top) else {
+            continue;
+        };
+        let (Some(leaks), Filter::Vsm { size, .. } | Filter::Moments { size, .. }) =
+            (o.leaks, m.setting.filter)
+        else {
+            continue;
+        };
+        // The filter's label without its side: the method and its parameters.
+        let label = filter_label(&m.setting.filter);
+        let parameters = label.split_once(',').map_or("", |(_, rest)| rest);
+        let line = format!(
+            "{} {}{}{}",
+            technique_label(m.setting.technique),
+            leaks.method.key(),
+            if parameters.is_empty() {
+                String::new()
+            } else {
+                format!(" {parameters}")
+            },
+            if m.setting.partitions > 1 {
+                format!(" ×{}", m.setting.partitions)
+            } else {
+                String::new()
+            }
+        );
+        #[expect(clippy::cast_precision_loss, reason = "pixel counts")]
+        let point = (f64::from(size), (leaks.leaks as f64).max(0.5));
+        match lines.iter_mut().find(|(l, _)| *l == line) {
+            Some((_, points)) => points.push(point),
+            None => lines.push((line, vec![point])),
+        }
+    }
+    if lines.iter().all(|(_, points)| points.len() < 2) {
+        return None;
+    }
+    let (mut x_max, mut y_max) = (1.0f64, 1.0f64);
+    let series = lines
+        .into_iter()
+        .enumerate()
+        .map(|(index, (label, mut points))| {
+            points.sort_by(|a, b| a.0.total_cmp(&b.0));
+            for p in &points {
+                x_max = x_max.max(p.0);
+                y_max = y_max.max(p.1);
+            }
+            let style = if index < 7 {
+                LineStyle::Solid
+            } else {
+                LineStyle::Dashed
+            };
+            Series::new(label, points, index, style)
+        })
+        .collect();
+    Some(Figure::single(
+        format!(
+            "{}: light leaks of the filterable maps against their prefilter ({top}² maps)",
+            study.scene
+        ),
+        Panel {
+            title: String::new(),
+            x: Axis::linear("prefilter side K (texels; a K × K box)", 0.0, x_max + 1.0),
+            y: Axis::log(
+                "light leaks (pixels the nearest lookup gets right)",
+                0.5,
+                y_max * 2.0,
+            ),
+            series,
+            markers: Vec::new(),
+            // Leaks grow with the prefilter: the lower right is where lines are least.
+            legend: LegendPosition::LowerRight,
+        },
+    ))
 }
 
 /// Time against misclassified pixels, one line per technique (and maps/filter) through its
