@@ -35,7 +35,7 @@ pub struct Report {
     /// scene-optimized map and frustum limiting alone), so there is nothing to draw.
     pub view_axis: Option<(String, Vec<u8>)>,
     /// `leaks.svg` and `leaks.png`: each filterable map's light leaks against its prefilter's
-    /// side; `None` unless some method was measured at two sides or more ([`leaks_figure`]).
+    /// side; `None` unless some method was measured at two sides or more.
     pub leaks: Option<(String, Vec<u8>)>,
     /// `report.html`: the same document as one self-contained page (inline style, script and
     /// plots; the pictures by relative path), with sortable tables and the pictures side by side.
