@@ -305,10 +305,25 @@ pub fn plan(
     let depths: Vec<f64> = samples.iter().map(|s| s.depth).collect();
     let boundaries = variant.boundaries(&depths, count)?;
     let nears = merged_nears(&boundaries, &depths);
-    let mut served: Vec<Vec<Sample>> = vec![Vec::new(); nears.len()];
-    for sample in samples {
-        served[serving_index(&nears, sample.depth)].push(sample);
-    }
+    // Each partition's samples in the samples' order: all of them, moved, for one partition;
+    // else counted first, so that each list is allocated once.
+    let served: Vec<Vec<Sample>> = if nears.len() == 1 {
+        vec![samples]
+    } else {
+        let index: Vec<usize> = samples
+            .par_iter()
+            .map(|s| serving_index(&nears, s.depth))
+            .collect();
+        let mut counts = vec![0; nears.len()];
+        for &k in &index {
+            counts[k] += 1;
+        }
+        let mut served: Vec<Vec<Sample>> = counts.into_iter().map(Vec::with_capacity).collect();
+        for (sample, k) in samples.into_iter().zip(index) {
+            served[k].push(sample);
+        }
+        served
+    };
     let reach = caster_reach(input, &frame)?;
     let half_fov = input
         .eye
