@@ -423,3 +423,39 @@ fn vsm_leaks_on_a_two_occluder_stack_and_the_others_less() {
         );
     }
 }
+
+/// Claim: an even prefilter reads a K × K box, as PCF's taps lie — VSM at K = 2 reads the 2 × 2
+/// texels around the point (here two at 0.2 and two at 0.5, a quarter texel from the texel
+/// centres so that no tap lies on a border) and gives their two-point distribution's bound.
+#[test]
+fn an_even_prefilter_reads_its_whole_box() {
+    let setup = plan(&input(DVec3::new(0.0, 1.0, 0.0)), Technique::Uniform).unwrap();
+    let map = synthetic(&setup, 16, |i, _| if i % 2 == 0 { 0.2 } else { 0.5 });
+    let side = f64::from(map.resolution);
+    let receiver = 0.6;
+    // Texel space (8.75, 8.75): the taps at 8.25 and 9.25 read texels 8 and 9 along each axis.
+    let ndc = DVec3::new(
+        8.75 / side * 2.0 - 1.0,
+        8.75 / side * 2.0 - 1.0,
+        2.0 * receiver - 1.0,
+    );
+    let clip = setup.mapping.clip_from_world().unwrap().inverse() * ndc.extend(1.0);
+    let point = clip.truncate() / clip.w;
+    let t = map.setup.mapping.window(point).unwrap().z;
+    let vsm = Lookup::new(
+        Bias::NONE,
+        Filter::Vsm {
+            size: 2,
+            min_variance: 0.0,
+        },
+    )
+    .lit_fraction(&map, point, DVec3::Y);
+    let (front, back) = (map.depth(8, 8), map.depth(9, 8));
+    let (mean, variance) = (0.5 * (front + back), 0.25 * (back - front).powi(2));
+    let closed = variance / (variance + (t - mean).powi(2));
+    assert!((vsm - closed).abs() < 1e-12, "VSM {vsm} against {closed}");
+    assert!(
+        vsm > 0.1,
+        "a 1 × 1 read would see one depth and give 0: {vsm}"
+    );
+}
