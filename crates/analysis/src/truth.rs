@@ -39,7 +39,7 @@ use shadowlab_shadow::{
     Bias, DepthComparison, Filter, LightSource, Lookup, MapOptions, PlanOptions, ShadowMap,
     Technique, plan_light,
 };
-use shadowlab_trace::{Bvh, Hit, Ray, offset_origin};
+use shadowlab_trace::{Bvh, Hit, RAY_CHUNK, Ray, offset_origin};
 
 use crate::error::AnalysisError;
 
@@ -110,15 +110,11 @@ pub fn exact_truth(scene: &Scene, eye: &EyeImage, bvh: &Bvh) -> Result<Truth, An
     Ok(truth)
 }
 
-/// What a pixel asks of one light: nothing (no surface), nothing because the point lies outside
-/// the light's cone, or a shadow ray.
-enum Query {
-    Nothing,
-    OutsideCone,
-    Ray(Ray),
-}
-
-/// One light's truth over the visible points `surface` (point and geometric normal per pixel).
+/// One light's truth over the visible points `surface` (point and geometric normal per pixel):
+/// runs of [`RAY_CHUNK`] pixels in parallel, each run's shadow rays made and cast together (one
+/// work item of the batch query, so on that run's thread) and answered in place — no per-pixel
+/// query or ray list of the whole image is kept. Each pixel's answer depends on its own ray alone,
+/// so the result is the same for any run length and thread count.
 fn cast(
     bvh: &Bvh,
     surface: &[Option<(DVec3, DVec3)>],
@@ -126,59 +122,51 @@ fn cast(
     index: usize,
 ) -> Result<(Vec<Option<bool>>, Vec<bool>), AnalysisError> {
     let magnitude = bvh.magnitude();
-    let queries: Vec<Query> = surface
-        .par_iter()
-        .enumerate()
-        .map(|(pixel, visible)| {
-            let Some((point, normal)) = *visible else {
-                return Ok(Query::Nothing);
-            };
-            if !inside_cone(light, point) {
-                return Ok(Query::OutsideCone);
-            }
-            let ray = match light {
-                LightSource::Directional { to_light } => {
-                    offset_origin(point, normal, *to_light, magnitude)
-                        .and_then(|origin| Ray::new(origin, *to_light))
-                }
-                LightSource::Spot { pose, .. } => {
-                    let target = pose.eye();
-                    offset_origin(point, normal, target - point, magnitude)
-                        .and_then(|origin| Ray::new(origin, target - origin))
-                }
-            };
-            ray.map(Query::Ray)
-                .map_err(|error| AnalysisError::ShadowRay {
-                    light: index,
-                    pixel,
-                    error,
-                })
-        })
-        .collect::<Result<_, _>>()?;
-    let rays: Vec<Ray> = queries
-        .iter()
-        .filter_map(|q| match q {
-            Query::Ray(ray) => Some(*ray),
-            _ => None,
-        })
-        .collect();
     let t_max = match light {
         LightSource::Directional { .. } => f64::INFINITY,
         LightSource::Spot { .. } => 1.0,
     };
-    let mut occluded = bvh.occluded_all(&rays, 0.0, t_max).into_iter();
-    let lit = queries
-        .iter()
-        .map(|q| match q {
-            Query::Nothing => None,
-            Query::OutsideCone => Some(false),
-            Query::Ray(_) => Some(!occluded.next().expect("one answer per ray")),
-        })
-        .collect();
-    let outside_cone = queries
-        .iter()
-        .map(|q| matches!(q, Query::OutsideCone))
-        .collect();
+    let ray_from = |point: DVec3, normal: DVec3| match light {
+        LightSource::Directional { to_light } => offset_origin(point, normal, *to_light, magnitude)
+            .and_then(|origin| Ray::new(origin, *to_light)),
+        LightSource::Spot { pose, .. } => {
+            let target = pose.eye();
+            offset_origin(point, normal, target - point, magnitude)
+                .and_then(|origin| Ray::new(origin, target - origin))
+        }
+    };
+    let mut lit = vec![None; surface.len()];
+    let mut outside_cone = vec![false; surface.len()];
+    lit.par_chunks_mut(RAY_CHUNK)
+        .zip(outside_cone.par_chunks_mut(RAY_CHUNK))
+        .zip(surface.par_chunks(RAY_CHUNK))
+        .enumerate()
+        .try_for_each(|(run, ((lit, outside_cone), surface))| {
+            let mut rays = Vec::with_capacity(surface.len());
+            let mut asked = Vec::with_capacity(surface.len());
+            for (k, visible) in surface.iter().enumerate() {
+                let Some((point, normal)) = *visible else {
+                    continue;
+                };
+                if !inside_cone(light, point) {
+                    // The cone, not the map, darkens such points.
+                    lit[k] = Some(false);
+                    outside_cone[k] = true;
+                    continue;
+                }
+                let ray = ray_from(point, normal).map_err(|error| AnalysisError::ShadowRay {
+                    light: index,
+                    pixel: run * RAY_CHUNK + k,
+                    error,
+                })?;
+                rays.push(ray);
+                asked.push(k);
+            }
+            for (k, occluded) in asked.into_iter().zip(bvh.occluded_all(&rays, 0.0, t_max)) {
+                lit[k] = Some(!occluded);
+            }
+            Ok::<(), AnalysisError>(())
+        })?;
     Ok((lit, outside_cone))
 }
 
