@@ -8,6 +8,7 @@
 
 use std::fmt::Write as _;
 
+use rayon::prelude::*;
 use serde_json::{Value, json};
 use shadowlab_plot::{Axis, Figure, LegendPosition, LineStyle, Panel, Series};
 use shadowlab_shadow::{Filter, StepDirection, Technique};
@@ -86,41 +87,28 @@ fn ms(d: std::time::Duration) -> f64 {
 pub fn report(study: &Study) -> Result<Report, AnalysisError> {
     // The figures and the pictures are drawn and encoded side by side: each is its own file.
     let drawn = |figure: Option<Figure>| -> Result<_, AnalysisError> {
-        let Some(figure) = figure else {
-            return Ok(None);
-        };
-        let svg = shadowlab_plot::render_svg(&figure)?;
-        let png = shadowlab_plot::render_png(&svg)?;
-        Ok(Some((svg, png)))
+        figure
+            .map(|figure| {
+                let svg = shadowlab_plot::render_svg(&figure)?;
+                let png = shadowlab_plot::render_png(&svg)?;
+                Ok((svg, png))
+            })
+            .transpose()
     };
-    let (((pareto, view_axis), leaks), pictures) = rayon::join(
-        || {
-            rayon::join(
-                || {
-                    rayon::join(
-                        || -> Result<_, AnalysisError> {
-                            let svg = shadowlab_plot::render_svg(&pareto(study))?;
-                            let png = shadowlab_plot::render_png(&svg)?;
-                            Ok((svg, png))
-                        },
-                        || -> Result<_, AnalysisError> {
-                            if study.view_axis.is_empty() {
-                                return Ok(None);
-                            }
-                            let svg = shadowlab_plot::render_svg(&view_axis_figure(study))?;
-                            let png = shadowlab_plot::render_png(&svg)?;
-                            Ok(Some((svg, png)))
-                        },
-                    )
-                },
-                || drawn(leaks_figure(study)),
-            )
-        },
+    let figures = [
+        Some(pareto(study)),
+        (!study.view_axis.is_empty()).then(|| view_axis_figure(study)),
+        leaks_figure(study),
+    ];
+    let (drawings, pictures) = rayon::join(
+        || figures.into_par_iter().map(drawn).collect::<Vec<_>>(),
         || crate::pictures::files(study),
     );
-    let ((pareto_svg, pareto_png), view_axis, leaks, pictures) =
-        (pareto?, view_axis?, leaks?, pictures?);
-    let blocks = document(study);
+    let mut drawings = drawings.into_iter();
+    let mut next = || drawings.next().expect("one drawing per figure");
+    let (pareto, view_axis, leaks, pictures) = (next()?, next()?, next()?, pictures?);
+    let (pareto_svg, pareto_png) = pareto.expect("the Pareto figure is always drawn");
+    let blocks = document(study, leaks.is_some());
     let html = crate::html::page(
         study,
         &blocks,
@@ -176,7 +164,7 @@ fn resolution_table(header: &[String], rows: Vec<Vec<String>>) -> Table {
 }
 
 /// The report as a document: what `report.md` and `report.html` both say.
-fn document(study: &Study) -> Vec<Block> {
+fn document(study: &Study, leaks_drawn: bool) -> Vec<Block> {
     let mut doc = Vec::new();
     let visible = study.visible.max(1);
     #[expect(clippy::cast_precision_loss, reason = "pixel counts")]
@@ -373,7 +361,7 @@ fn document(study: &Study) -> Vec<Block> {
         doc.push(Block::List(items));
     }
     view_axis_section(&mut doc, study);
-    if leaks_figure(study).is_some() {
+    if leaks_drawn {
         doc.push(Block::Heading(
             2,
             vec![text(
