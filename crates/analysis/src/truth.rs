@@ -122,18 +122,19 @@ fn cast(
     index: usize,
 ) -> Result<(Vec<Option<bool>>, Vec<bool>), AnalysisError> {
     let magnitude = bvh.magnitude();
-    let t_max = match light {
-        LightSource::Directional { .. } => f64::INFINITY,
-        LightSource::Spot { .. } => 1.0,
+    // A ray toward a light at infinity, or along the segment to the light's position (t ≤ 1).
+    let t_max = match light.position() {
+        None => f64::INFINITY,
+        Some(_) => 1.0,
     };
-    let ray_from = |point: DVec3, normal: DVec3| match light {
-        LightSource::Directional { to_light } => offset_origin(point, normal, *to_light, magnitude)
-            .and_then(|origin| Ray::new(origin, *to_light)),
-        LightSource::Spot { pose, .. } => {
-            let target = pose.eye();
-            offset_origin(point, normal, target - point, magnitude)
-                .and_then(|origin| Ray::new(origin, target - origin))
+    let ray_from = |point: DVec3, normal: DVec3| match light.position() {
+        None => {
+            let to_light = light.toward_from(point);
+            offset_origin(point, normal, to_light, magnitude)
+                .and_then(|origin| Ray::new(origin, to_light))
         }
+        Some(target) => offset_origin(point, normal, target - point, magnitude)
+            .and_then(|origin| Ray::new(origin, target - origin)),
     };
     let mut lit = vec![None; surface.len()];
     let mut outside_cone = vec![false; surface.len()];
@@ -148,8 +149,8 @@ fn cast(
                 let Some((point, normal)) = *visible else {
                     continue;
                 };
-                if !inside_cone(light, point) {
-                    // The cone, not the map, darkens such points.
+                if !light.reaches(point) {
+                    // The cone or the range, not the map, darkens such points.
                     lit[k] = Some(false);
                     outside_cone[k] = true;
                     continue;
@@ -168,17 +169,6 @@ fn cast(
             Ok::<(), AnalysisError>(())
         })?;
     Ok((lit, outside_cone))
-}
-
-/// Whether `point` lies in `light`'s cone: always for a directional light; for a spot, at most
-/// half its `fov_y` from its axis (the test `shadowlab_shadow::view::shade` applies).
-fn inside_cone(light: &LightSource, point: DVec3) -> bool {
-    match light {
-        LightSource::Directional { .. } => true,
-        LightSource::Spot { pose, cone } => {
-            (-light.toward_from(point)).dot(pose.forward()) >= (0.5 * cone.fov_y()).cos()
-        }
-    }
 }
 
 /// `position` carried onto triangle `triangle` of `bvh`: its barycentric coordinates, clamped to
@@ -307,7 +297,7 @@ pub fn map_truth(scene: &Scene, eye: &EyeImage, resolution: u32) -> Result<Truth
                     return (None, false);
                 }
                 let point = eye.position[pixel];
-                if !inside_cone(&source, point) {
+                if !source.reaches(point) {
                     return (Some(false), true);
                 }
                 let fraction = lookup.lit_fraction(&map, point, eye.normal[pixel]);

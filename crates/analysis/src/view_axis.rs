@@ -159,6 +159,8 @@ fn closed_form(technique: Technique, setup: &LightSetup, range: DepthRange, t: f
         | Technique::Optimal(_)
         | Technique::Given
         | Technique::Sdsm(_)
+        | Technique::Cube
+        | Technique::DualParaboloid
         | Technique::Engine(..) => None,
     }
 }

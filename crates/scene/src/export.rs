@@ -315,6 +315,15 @@ fn document(scene: &Scene, embed: Option<()>) -> Result<(Value, Vec<u8>), Export
                     "spot": { "innerConeAngle": 0.0, "outerConeAngle": f32_value(0.5 * cone.fov_y()) },
                 }),
             ),
+            SceneLight::Point { position, range } => {
+                let node =
+                    json!({ "name": name, "translation": position.to_array().map(f32_value) });
+                let mut light = json!({ "type": "point" });
+                if let Some(range) = range {
+                    light["range"] = f32_value(*range);
+                }
+                (node, light)
+            }
         };
         node["extensions"] = json!({ "KHR_lights_punctual": { "light": index } });
         nodes.push(node);
@@ -449,6 +458,11 @@ pub fn export_obj(scene: &Scene) -> String {
                 cone.fov_y(),
                 cone.near(),
                 cone.far()
+            ),
+            SceneLight::Point { position, range } => format!(
+                "# light {index} point position {}{}",
+                vector(*position),
+                range.map_or_else(String::new, |r| format!(" range {r:?}"))
             ),
         });
     }

@@ -83,20 +83,32 @@ pub enum SceneLight {
         /// far along the travel direction. Its frustum is the light frustum L of PSM §4.1.
         cone: Perspective,
     },
+    /// An omnidirectional point light (`KHR_lights_punctual`'s `point`): it lights every direction
+    /// (PSM §4.1: its light frustum L is all space).
+    Point {
+        /// Where it is.
+        position: DVec3,
+        /// The distance beyond which it lights nothing (`KHR_lights_punctual`'s `range`); `None`:
+        /// unlimited. Positive and finite.
+        range: Option<f64>,
+    },
 }
 
 impl SceneLight {
-    /// hull's [`Light`]: [`Light::directional`] or [`Light::spot`].
+    /// hull's [`Light`]: [`Light::directional`], [`Light::spot`] or [`Light::point`].
     ///
     /// # Panics
-    /// If `to_light` is zero or not finite, which a scene file's light never is (only a hand-built
-    /// value can be).
+    /// If `to_light` is zero or not finite, or `position` not finite, which a scene file's light
+    /// never is (only a hand-built value can be).
     #[must_use]
     pub fn light(&self) -> Light {
         match self {
             Self::Directional { to_light } => Light::directional(*to_light)
                 .unwrap_or_else(|error| panic!("SceneLight::light: {error}")),
             Self::Spot { pose, cone } => Light::spot(pose, cone),
+            Self::Point { position, .. } => {
+                Light::point(*position).unwrap_or_else(|error| panic!("SceneLight::light: {error}"))
+            }
         }
     }
 }

@@ -35,6 +35,16 @@ pub enum ShadowError {
     },
     /// The light lies inside the region the shadow map must cover, so no projection from it fits.
     LightInsideFocusBody,
+    /// The technique cannot serve this kind of light (a light-space warp for a point light, whose
+    /// light lights every direction; a cube map for a directional light).
+    UnservedLight {
+        /// The technique's key.
+        technique: &'static str,
+        /// The light's kind: `directional`, `spot` or `point`.
+        light: &'static str,
+        /// The techniques that serve such a light.
+        serving: &'static str,
+    },
     /// A map fitted to the eye pass's samples ([`crate::sdsm`]) has none to fit: nothing is
     /// visible, or nothing visible lies inside the spot light's cone.
     NoSamples,
@@ -59,6 +69,14 @@ impl fmt::Display for ShadowError {
             Self::LightInsideFocusBody => {
                 f.write_str("the light lies inside the region its shadow map must cover")
             }
+            Self::UnservedLight {
+                technique,
+                light,
+                serving,
+            } => write!(
+                f,
+                "{technique} cannot serve a {light} light; techniques for {light} lights: {serving}"
+            ),
             Self::NoSamples => f.write_str(
                 "no visible sample to fit the shadow map to: nothing is visible, or nothing \
                  visible lies inside the spot light's cone",
@@ -78,6 +96,7 @@ impl std::error::Error for ShadowError {
             | Self::FlatFocusBody { .. }
             | Self::NotDefined { .. }
             | Self::LightInsideFocusBody
+            | Self::UnservedLight { .. }
             | Self::NoSamples => None,
         }
     }

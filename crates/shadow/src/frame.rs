@@ -7,6 +7,7 @@ use shadowlab_hull::{LightSpace, NdcDepth, ViewPose};
 
 use crate::error::ShadowError;
 use crate::input::{Eye, LightSource};
+use crate::technique::Technique;
 
 /// The techniques whose map does not depend on the eye's position in light space, only on the
 /// focus body B: the uniform maps (κ = 0, an orthographic fit of B; frustum limiting clips B's
@@ -49,6 +50,7 @@ impl LightFrame {
     ) -> Result<Self, ShadowError> {
         let (pre, pose, to_light) = match light {
             LightSource::Directional { to_light } => (DMat4::IDENTITY, eye.pose, *to_light),
+            LightSource::Point { .. } => return Err(Technique::unserved_point_light(technique)),
             LightSource::Spot { pose, cone } => {
                 let pre = cone.matrix(NdcDepth::NegativeOneToOne) * pose.view_matrix();
                 let e = eye.pose.eye();

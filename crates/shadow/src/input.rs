@@ -80,6 +80,13 @@ pub enum LightSource {
         /// Cone (as a perspective frustum: full cone angle as `fov_y`, aspect 1), near and far.
         cone: Perspective,
     },
+    /// An omnidirectional point light at `position`, lighting nothing beyond `range` (if given).
+    Point {
+        /// Where it is.
+        position: DVec3,
+        /// The distance beyond which it lights nothing; `None`: unlimited.
+        range: Option<f64>,
+    },
 }
 
 impl LightSource {
@@ -102,6 +109,9 @@ impl LightSource {
                 Light::directional(*to_light).expect("a LightSource's vector is unit")
             }
             Self::Spot { pose, cone } => Light::spot(pose, cone),
+            Self::Point { position, .. } => {
+                Light::point(*position).expect("a LightSource's position is finite")
+            }
         }
     }
 
@@ -111,6 +121,7 @@ impl LightSource {
         match self {
             Self::Directional { to_light } => *to_light,
             Self::Spot { pose, .. } => (pose.eye() - point).normalize_or(-pose.forward()),
+            Self::Point { position, .. } => (*position - point).normalize_or(DVec3::Y),
         }
     }
 
@@ -120,6 +131,43 @@ impl LightSource {
         match self {
             Self::Directional { to_light } => to_light.extend(0.0),
             Self::Spot { pose, .. } => pose.eye().extend(1.0),
+            Self::Point { position, .. } => position.extend(1.0),
+        }
+    }
+
+    /// Its kind: `directional`, `spot` or `point`.
+    #[must_use]
+    pub fn kind(&self) -> &'static str {
+        match self {
+            Self::Directional { .. } => "directional",
+            Self::Spot { .. } => "spot",
+            Self::Point { .. } => "point",
+        }
+    }
+
+    /// The light's position; `None` for a directional light.
+    #[must_use]
+    pub fn position(&self) -> Option<DVec3> {
+        match self {
+            Self::Directional { .. } => None,
+            Self::Spot { pose, .. } => Some(pose.eye()),
+            Self::Point { position, .. } => Some(*position),
+        }
+    }
+
+    /// Whether the light reaches `point` at all: always for a directional light; for a spot, when
+    /// `point` lies at most half its `fov_y` from its axis; for a point light, when it lies within
+    /// its range. Outside, the light's volume — not a shadow map — darkens the point.
+    #[must_use]
+    pub fn reaches(&self, point: DVec3) -> bool {
+        match self {
+            Self::Directional { .. } => true,
+            Self::Spot { pose, cone } => {
+                (-self.toward_from(point)).dot(pose.forward()) >= (0.5 * cone.fov_y()).cos()
+            }
+            Self::Point { position, range } => {
+                range.is_none_or(|range| (point - *position).length() <= range)
+            }
         }
     }
 }

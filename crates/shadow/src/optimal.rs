@@ -1071,6 +1071,7 @@ impl Problem {
 fn light_space(input: &PlanInput, world: &[DVec3]) -> Result<(DMat4, LightPoint), ShadowError> {
     match input.light {
         LightSource::Spot { pose, .. } => Ok((pose.view_matrix(), LightPoint::Origin)),
+        LightSource::Point { .. } => Err(Technique::unserved_point_light("optimal")),
         LightSource::Directional { .. } => {
             let frame = LightFrame::new(
                 &input.eye,

@@ -50,6 +50,12 @@ pub fn plan(input: &PlanInput, technique: Technique) -> Result<LightSetup, Shado
                      with plan_light"
                 .into(),
         }),
+        Technique::Cube | Technique::DualParaboloid => Err(ShadowError::NotDefined {
+            technique: technique.key(),
+            reason: "an omnidirectional map's near plane is the nearest geometry its light sees: \
+                     plan it with plan_light and the scene"
+                .into(),
+        }),
         Technique::Given => Err(ShadowError::NotDefined {
             technique: "given",
             reason: "a given set-up is read from its set-up file, not planned".into(),

@@ -136,6 +136,10 @@ impl LightSource {
                 pose: *pose,
                 cone: *cone,
             },
+            SceneLight::Point { position, range } => Self::Point {
+                position: *position,
+                range: *range,
+            },
         }
     }
 }

@@ -293,7 +293,7 @@ pub fn plan(
     // In parallel, in the samples' order.
     let samples: Vec<Sample> = samples
         .par_iter()
-        .filter(|p| in_cone(&input.light, **p))
+        .filter(|p| input.light.reaches(**p))
         .map(|&world| {
             Ok(Sample {
                 world,
@@ -376,17 +376,6 @@ fn light_setup(
     }
 }
 
-/// Whether `light` lights `point` at all: always for a directional light; for a spot light, inside
-/// its cone ([cone-lit samples](#cone-lit-samples)).
-fn in_cone(light: &LightSource, point: DVec3) -> bool {
-    match light {
-        LightSource::Directional { .. } => true,
-        LightSource::Spot { pose, cone } => {
-            (-light.toward_from(point)).dot(pose.forward()) >= (0.5 * cone.fov_y()).cos()
-        }
-    }
-}
-
 /// `world` in light space through `to_light` (`None` where a spot's transform sends it behind the
 /// light): [`LightFrame::light_point`] with the matrix made once.
 fn light_point(to_light: &DMat4, world: DVec3) -> Option<DVec3> {
@@ -436,6 +425,7 @@ fn caster_reach(input: &PlanInput, frame: &LightFrame) -> Result<f64, ShadowErro
                 .ok_or(ShadowError::LightInsideFocusBody)?;
             Ok(highest(&points))
         }
+        LightSource::Point { .. } => Err(Technique::unserved_point_light(KEY)),
         LightSource::Spot { pose, cone } => {
             // In the spot's space its near plane is perpendicular to the light's direction, the
             // frame's y: one point gives its height.

@@ -5,6 +5,8 @@ use std::fmt;
 use shadowlab_params::{ParameterRule, WarpParameter};
 
 use crate::cascade_fit::CascadeFit;
+use crate::error::ShadowError;
+use crate::input::LightSource;
 use crate::selection::SelectionRule;
 
 /// A shadow-map technique: how the light's view and projection are built.
@@ -43,6 +45,16 @@ pub enum Technique {
     /// variant says (`sdsm`, `sdsm:kmeans`). Needs the eye pass, so it is planned by
     /// [`crate::plan_light`] with the eye image, not by [`crate::plan`].
     Sdsm(SdsmVariant),
+    /// The omnidirectional cube shadow map of a point light (Gerasimov, *Omnidirectional Shadow
+    /// Mapping*, GPU Gems ch. 12, 2004; every engine's point-light shadow): six 90° perspective
+    /// frusta from the light along ±x, ±y, ±z, each kept for the part of B its face sees, its near
+    /// plane at the nearest geometry it sees ([`crate::cube`]).
+    Cube,
+    /// The dual-paraboloid map of a point light (Brabec, Annen & Seidel, *Shadow Mapping for
+    /// Hemispherical and Omnidirectional Light Sources*, CGI 2002): two hemispheres, each mapped
+    /// by the paraboloid `(x, y) = (d_x, d_y)/(1 + d_z)` of the unit direction `d`, depth the
+    /// distance from the light; made exactly, one ray per texel ([`crate::paraboloid`]).
+    DualParaboloid,
     /// An engine's default shadows ([`crate::presets`]): its cascades, fit, snapping, blending,
     /// selection and bias, keyed by the engine's name; `ENGINE:CHOICE+…` with some of them
     /// chosen otherwise ([`PresetChoices`]: `bevy:unsnapped`, `babylon:fit=sphere+blend=0.2`).
@@ -314,7 +326,7 @@ fn stated(spec: &str, name: &str) -> Result<Option<f64>, String> {
 
 impl Technique {
     /// The technique keys, in the order outputs list them.
-    pub const KEYS: [&'static str; 7] = [
+    pub const KEYS: [&'static str; 9] = [
         "uniform",
         "uniform_limited",
         "psm",
@@ -322,7 +334,52 @@ impl Technique {
         "logarithmic",
         "optimal",
         "sdsm",
+        "cube",
+        "dual-paraboloid",
     ];
+
+    /// The techniques that serve a point light, as an error message lists them.
+    pub const POINT_LIGHT_TECHNIQUES: &'static str = "cube, dual-paraboloid, psm";
+
+    /// The techniques that serve a directional or spot light, as an error message lists them.
+    pub const DIRECTED_LIGHT_TECHNIQUES: &'static str = "every technique but cube and \
+                                                         dual-paraboloid";
+
+    /// Whether it can serve `light`: a point light lights every direction, so only the
+    /// omnidirectional maps and PSM (which sees the light as one point in post-perspective space,
+    /// §4) serve it — and a set-up given from outside, which is whatever it is; the omnidirectional
+    /// maps serve point lights only.
+    ///
+    /// # Errors
+    /// [`ShadowError::UnservedLight`] naming the technique, the light's kind and what serves it.
+    pub fn check_light(self, light: &LightSource) -> Result<(), ShadowError> {
+        let point = matches!(light, LightSource::Point { .. });
+        let serves = match self {
+            Self::Psm | Self::Given => true,
+            Self::Cube | Self::DualParaboloid => point,
+            _ => !point,
+        };
+        if serves {
+            Ok(())
+        } else if point {
+            Err(Self::unserved_point_light(self.key()))
+        } else {
+            Err(ShadowError::UnservedLight {
+                technique: self.key(),
+                light: light.kind(),
+                serving: Self::DIRECTED_LIGHT_TECHNIQUES,
+            })
+        }
+    }
+
+    /// The error of the technique keyed `technique` given a point light.
+    pub(crate) fn unserved_point_light(technique: &'static str) -> ShadowError {
+        ShadowError::UnservedLight {
+            technique,
+            light: "point",
+            serving: Self::POINT_LIGHT_TECHNIQUES,
+        }
+    }
 
     /// The logarithmic map with shadowlab's reference rule.
     pub const LOGARITHMIC: Self = Self::Logarithmic(LogarithmicChoice::Eye);
@@ -340,6 +397,8 @@ impl Technique {
             Self::Optimal(_) => "optimal",
             Self::Given => "given",
             Self::Sdsm(_) => "sdsm",
+            Self::Cube => "cube",
+            Self::DualParaboloid => "dual-paraboloid",
             Self::Engine(engine, _) => engine.key(),
         }
     }
@@ -400,6 +459,8 @@ impl Technique {
             "logarithmic" => Self::LOGARITHMIC,
             "optimal" => Self::Optimal(StepDirection::Paper),
             "sdsm" => Self::Sdsm(SdsmVariant::Log),
+            "cube" => Self::Cube,
+            "dual-paraboloid" => Self::DualParaboloid,
             _ => match Engine::from_key(key) {
                 Some(engine) => Self::Engine(engine, PresetChoices::default()),
                 None => {

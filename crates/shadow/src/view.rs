@@ -12,7 +12,7 @@ use shadowlab_raster::{EyeImage, NO_TRIANGLE};
 use shadowlab_scene::Scene;
 use tiny_skia::{Color, LineCap, Paint, PathBuilder, Pixmap, Stroke, Transform};
 
-use crate::input::{Eye, LightSource};
+use crate::input::Eye;
 use crate::map::ShadowMap;
 use crate::render::{Frame, LightShadow};
 
@@ -79,15 +79,12 @@ pub fn shade_eye(
                 .zip(lit)
                 .map(|(shadow, lit)| {
                     let toward = shadow.light.toward_from(position);
-                    let cone = match shadow.light {
-                        LightSource::Spot { pose, cone } => {
-                            let inside =
-                                (-toward).dot(pose.forward()) >= (0.5 * cone.fov_y()).cos();
-                            if inside { 1.0 } else { 0.0 }
-                        }
-                        LightSource::Directional { .. } => 1.0,
+                    let reached = if shadow.light.reaches(position) {
+                        1.0
+                    } else {
+                        0.0
                     };
-                    direct * normal.dot(toward).max(0.0) * lit[pixel] * cone
+                    direct * normal.dot(toward).max(0.0) * lit[pixel] * reached
                 })
                 .sum();
             let albedo = PALETTE[groups[triangle as usize] as usize % PALETTE.len()];

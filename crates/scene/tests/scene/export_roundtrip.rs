@@ -203,6 +203,15 @@ fn an_obj_export_reads_back_bit_for_bit_with_its_camera_and_lights() {
                     assert_eq!(header_numbers(&text, &prefix, "near"), [cone.near()]);
                     assert_eq!(header_numbers(&text, &prefix, "far"), [cone.far()]);
                 }
+                SceneLight::Point { position, range } => {
+                    assert_eq!(
+                        vector(&header_numbers(&text, &prefix, "position")),
+                        *position
+                    );
+                    if let Some(range) = range {
+                        assert_eq!(header_numbers(&text, &prefix, "range"), [*range]);
+                    }
+                }
             }
         }
     }

@@ -500,7 +500,7 @@ fn without_camera_and_lights_a_gltf_scene_takes_the_scene_file_defaults() {
         SceneLight::Directional { to_light } => {
             assert!((to_light + DEFAULT_SUN_DIRECTION.normalize()).length() < 1e-15);
         }
-        SceneLight::Spot { .. } => panic!("the default sun"),
+        SceneLight::Spot { .. } | SceneLight::Point { .. } => panic!("the default sun"),
     }
 }
 

@@ -438,6 +438,7 @@ fn built_in_scenes_plan_from_their_eye_pass() {
                 })
                 .collect(),
             LightSource::Directional { .. } => visible.clone(),
+            LightSource::Point { .. } => unreachable!("{name} has no point light"),
         };
         assert!(!lit.is_empty(), "{name}");
         for variant in SdsmVariant::ALL {
