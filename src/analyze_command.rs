@@ -8,7 +8,10 @@ use shadowlab_raster::DepthFormat;
 use shadowlab_scene::Scene;
 use shadowlab_shadow::{Bias, Splits};
 
-use crate::args::{AnalyzeArgs, MemoryArgs, SceneArg, StudyView, SweepArgs, TemporalArgs};
+use crate::args::{
+    ALL_TECHNIQUES, AnalyzeArgs, MemoryArgs, SWEEP_TECHNIQUES, SceneArg, StudyView, SweepArgs,
+    TEMPORAL_TECHNIQUES, TemporalArgs,
+};
 use crate::error::CliError;
 use crate::exports::{self, Exporter};
 use crate::memory::{self, Workload};
@@ -16,7 +19,9 @@ use crate::output::{
     OutputDir, PICTURES, TEXT_BOUND, annotated_png_bound, png_bound, print_line, slug,
 };
 use crate::progress;
-use crate::shadow_settings::{load_scene_argument, optimizer_flags, technique_list};
+use crate::shadow_settings::{
+    load_scene_argument, optimizer_flags, study_techniques, technique_list,
+};
 
 /// The output set of a study command: `--out`, or `out/<command>/<scene>` with the scene's name
 /// made safe as a path component; checked before any work.
@@ -36,7 +41,12 @@ fn output_dir(
 
 pub(crate) fn analyze(args: &AnalyzeArgs) -> Result<(), CliError> {
     let scene = load_scene_argument(&args.scene)?;
-    let techniques = technique_list(&args.techniques, &args.stated)?;
+    let techniques = technique_list(
+        &scene,
+        args.techniques.as_deref(),
+        ALL_TECHNIQUES,
+        &args.stated,
+    )?;
     let options = study::StudyOptions {
         techniques,
         resolutions: args.resolutions.clone(),
@@ -246,7 +256,7 @@ fn study_memory(scene: &Scene, view: &StudyView, memory: &MemoryArgs) -> Result<
 
 pub(crate) fn sweep_angle(args: &SweepArgs) -> Result<(), CliError> {
     let scene = study_scene(&args.scene, &args.view)?;
-    let techniques = args.techniques.clone();
+    let techniques = study_techniques(&scene, args.techniques.as_deref(), SWEEP_TECHNIQUES)?;
     let side = if args.behind {
         sweep::Side::Behind
     } else {
@@ -280,7 +290,7 @@ pub(crate) fn sweep_angle(args: &SweepArgs) -> Result<(), CliError> {
 
 pub(crate) fn temporal(args: &TemporalArgs) -> Result<(), CliError> {
     let scene = study_scene(&args.scene, &args.view)?;
-    let techniques = args.techniques.clone();
+    let techniques = study_techniques(&scene, args.techniques.as_deref(), TEMPORAL_TECHNIQUES)?;
     let out = output_dir(args.out.as_ref(), "temporal", &scene, TEXT_BOUND)?;
     study_memory(&scene, &args.view, &args.memory)?;
     let bar = progress::bar("temporal");

@@ -135,9 +135,9 @@ pub(crate) struct SceneArg {
     pub(crate) gltf_scene: Option<usize>,
 }
 
-/// The techniques every study command measures by default (the engines' presets are measured when
-/// named: `--techniques bevy,filament,godot,babylon,threejs,unity,unreal`).
-const ALL_TECHNIQUES: &str =
+/// The techniques `analyze` measures by default for directional and spot lights (the engines'
+/// presets are measured when named: `--techniques bevy,filament,godot,babylon,threejs,unity,unreal`).
+pub(crate) const ALL_TECHNIQUES: &str =
     "uniform,uniform_limited,psm,lispsm,lispsm:minimax,logarithmic,optimal,sdsm";
 
 /// Arguments of `shadowlab analyze`.
@@ -150,8 +150,10 @@ pub(crate) struct AnalyzeArgs {
     /// unity, unreal), with choices of its own after a colon, +-joined: unsnapped, fit=diagonal|
     /// diagonal-ceil|box|sphere|sphere-border, blend=W (0 ≤ W < 1), select=depth|containing
     /// (godot:unsnapped+blend=0.1).
-    #[arg(long, value_delimiter = ',', default_value = ALL_TECHNIQUES, allow_hyphen_values = true, value_parser = technique_spec)]
-    pub(crate) techniques: Vec<Technique>,
+    /// Default: uniform, uniform_limited, psm, lispsm, lispsm:minimax, logarithmic, optimal, sdsm;
+    /// for a scene of point lights: cube, dual-paraboloid, psm.
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true, value_parser = technique_spec)]
+    pub(crate) techniques: Option<Vec<Technique>>,
     /// Shadow-map sides, comma-separated (Chong and Gortler's: 750 to 2000).
     #[arg(long, value_delimiter = ',', default_value = "750,1000,1250,1500,1750,2000", allow_negative_numbers = true, value_parser = whole::<1, MAX_TARGET_SIZE>)]
     pub(crate) resolutions: Vec<u32>,
@@ -261,13 +263,16 @@ pub(crate) struct SweepArgs {
     #[command(flatten)]
     pub(crate) scene: SceneArg,
     /// The techniques (near-parallel policies), comma-separated.
+    /// Default: uniform, psm, lispsm, lispsm:minimax, lispsm:filament, lispsm:ogre,
+    /// lispsm:osg, lispsm:osg_vdsm, optimal; for a scene of point lights: cube, dual-paraboloid, psm.
+    /// Default: uniform, uniform_limited, psm, lispsm, optimal; for a scene of point lights: cube, dual-paraboloid, psm.
+    /// Default: uniform, uniform_limited, psm, lispsm, logarithmic; for a scene of point lights: cube, dual-paraboloid, psm.
     #[arg(
         long,
         value_delimiter = ',',
-        allow_hyphen_values = true, value_parser = technique_spec,
-        default_value = "uniform,psm,lispsm,lispsm:minimax,lispsm:filament,lispsm:ogre,lispsm:osg,lispsm:osg_vdsm,optimal"
+        allow_hyphen_values = true, value_parser = technique_spec
     )]
-    pub(crate) techniques: Vec<Technique>,
+    pub(crate) techniques: Option<Vec<Technique>>,
     #[command(flatten)]
     pub(crate) view: StudyView,
     /// Let the light come from behind the viewer as γ → 0 (default: from in front, the dueling
@@ -293,10 +298,9 @@ pub(crate) struct TemporalArgs {
     #[arg(
         long,
         value_delimiter = ',',
-        allow_hyphen_values = true, value_parser = technique_spec,
-        default_value = "uniform,uniform_limited,psm,lispsm,optimal"
+        allow_hyphen_values = true, value_parser = technique_spec
     )]
-    pub(crate) techniques: Vec<Technique>,
+    pub(crate) techniques: Option<Vec<Technique>>,
     #[command(flatten)]
     pub(crate) view: StudyView,
     #[command(flatten)]
@@ -317,10 +321,9 @@ pub(crate) struct CompareArgs {
     #[arg(
         long,
         value_delimiter = ',',
-        allow_hyphen_values = true, value_parser = technique_spec,
-        default_value = "uniform,uniform_limited,psm,lispsm,logarithmic"
+        allow_hyphen_values = true, value_parser = technique_spec
     )]
-    pub(crate) techniques: Vec<Technique>,
+    pub(crate) techniques: Option<Vec<Technique>>,
     /// Shadow-map side in texels.
     #[arg(long, default_value_t = 1024, allow_negative_numbers = true, value_parser = whole::<1, MAX_TARGET_SIZE>)]
     pub(crate) resolution: u32,
@@ -640,3 +643,12 @@ pub(crate) fn border_fraction(value: f64) -> Result<f64, String> {
 
 /// The most descent iterations a user may ask of the optimizer.
 pub(crate) const MAX_OPTIMAL_ITERATIONS: u32 = 1000;
+
+/// The techniques `sweep` measures by default for directional and spot lights.
+pub(crate) const SWEEP_TECHNIQUES: &str = "uniform,psm,lispsm,lispsm:minimax,lispsm:filament,lispsm:ogre,lispsm:osg,lispsm:osg_vdsm,optimal";
+
+/// The techniques `temporal` measures by default for directional and spot lights.
+pub(crate) const TEMPORAL_TECHNIQUES: &str = "uniform,uniform_limited,psm,lispsm,optimal";
+
+/// The techniques `compare` measures by default for directional and spot lights.
+pub(crate) const COMPARE_TECHNIQUES: &str = "uniform,uniform_limited,psm,lispsm,logarithmic";

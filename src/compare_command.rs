@@ -7,7 +7,7 @@ use shadowlab_shadow::{
 };
 use tiny_skia::{Color, Pixmap, PixmapPaint, Transform};
 
-use crate::args::CompareArgs;
+use crate::args::{COMPARE_TECHNIQUES, CompareArgs};
 use crate::error::CliError;
 use crate::memory::{self, Workload};
 use crate::output::{OutputFile, png_bound, print_line};
@@ -28,7 +28,12 @@ pub(crate) fn run(args: &CompareArgs) -> Result<(), CliError> {
             "invalid --crop: {cw}x{ch} at ({cx}, {cy}) does not fit the {width}x{height} image"
         )));
     }
-    let techniques = technique_list(&args.techniques, &args.stated)?;
+    let techniques = technique_list(
+        &scene,
+        args.techniques.as_deref(),
+        COMPARE_TECHNIQUES,
+        &args.stated,
+    )?;
     let optimal = optimizer_flags(&args.optimizer)?;
     let columns = args
         .columns

@@ -51,7 +51,7 @@ fn setup_json(setup: &LightSetup) -> Value {
             json!(row_major(&mapping.view())),
             json!(row_major(&mapping.projection())),
         ),
-        ShadowMapping::Logarithmic(_) => (Value::Null, Value::Null),
+        ShadowMapping::Logarithmic(_) | ShadowMapping::Paraboloid(_) => (Value::Null, Value::Null),
     };
     let warp = setup.warp.as_ref();
     json!({
@@ -232,6 +232,13 @@ pub(crate) fn run(args: &InspectArgs) -> Result<(), CliError> {
                             ))?;
                         }
                     }
+                }
+                ShadowMapping::Paraboloid(map) => {
+                    let (near, far) = map.depth_range();
+                    print_line(&format!(
+                        "    paraboloid hemisphere (not projective), axis {}, near {near}, far {far}",
+                        map.axis()
+                    ))?;
                 }
                 ShadowMapping::Logarithmic(map) => {
                     print_line(&format!(

@@ -8,12 +8,13 @@ use std::path::Path;
 use shadowlab_raster::{DepthFormat, MAX_TARGET_SIZE};
 use shadowlab_scene::scene_file::MAX_IMAGE_SIDE;
 use shadowlab_scene::{
-    DEFAULT_SCENE, Scene, ShadowSettings, builtin_scene, is_gltf_path, load_gltf_scene,
+    DEFAULT_SCENE, Scene, SceneLight, ShadowSettings, builtin_scene, is_gltf_path, load_gltf_scene,
     load_scene_with_warnings,
 };
 use shadowlab_shadow::optimal::OptimalOptions;
 use shadowlab_shadow::{
-    Bias, Filter, FocusPolicy, FrameOptions, Lookup, PlanOptions, Splits, Technique, WarpChoice,
+    Bias, Filter, FocusPolicy, FrameOptions, LightSource, Lookup, PlanOptions, Splits, Technique,
+    WarpChoice,
 };
 
 use crate::args::{
@@ -86,7 +87,13 @@ pub(crate) fn resolve(args: &ShadowArgs) -> Result<Resolved, CliError> {
         file: scene_label(&args.scene),
         settings: &settings,
     };
-    let technique = technique(args, &table)?;
+    let technique = technique(args, &table, &scene)?;
+    let flag = if args.technique.is_some() {
+        "--technique".to_owned()
+    } else {
+        format!("{}: shadow.technique", table.file)
+    };
+    check_techniques(&scene, &[technique], &flag)?;
     let splits = table
         .or_field(
             args.split_scheme,
@@ -160,7 +167,12 @@ fn in_range(value: u32, lo: u32, hi: u32) -> Result<u32, String> {
 /// scene's technique and its parameter; the parameter is then `--param`, `--lambda` or `--n` (at
 /// most one, which clap checks), else, for the scene's own technique, the scene's `parameter`,
 /// `lambda` or `n` (at most one).
-fn technique(args: &ShadowArgs, table: &SceneTable<'_>) -> Result<Technique, CliError> {
+/// Without either, the default of the scene's lights ([`default_technique`]).
+fn technique(
+    args: &ShadowArgs,
+    table: &SceneTable<'_>,
+    scene: &Scene,
+) -> Result<Technique, CliError> {
     let settings = table.settings;
     let from_flags = [
         args.parameter.clone().map(|p| ("--param", p)),
@@ -180,7 +192,7 @@ fn technique(args: &ShadowArgs, table: &SceneTable<'_>) -> Result<Technique, Cli
                 .or_field(None, settings.technique.as_deref(), "technique", |key| {
                     Technique::parse_spec(key)
                 })?
-                .unwrap_or(Technique::Lispsm(WarpChoice::PAPER));
+                .unwrap_or_else(|| default_technique(scene));
             let from_scene: Vec<_> = [
                 settings.parameter.clone().map(|p| ("parameter", p)),
                 settings.lambda.map(|l| ("lambda", format!("lambda={l}"))),
@@ -321,13 +333,92 @@ fn scene_label(arg: &SceneArg) -> String {
     }
 }
 
-/// The techniques of a list (`--techniques`), then LiSPSM at each stated λ and n (`--lambda`,
-/// `--n`).
-pub(crate) fn technique_list(
+/// The technique of a scene that names none: the cube map where every light is a point light
+/// (what engines ship for them), LiSPSM (the paper's parameter) otherwise.
+fn default_technique(scene: &Scene) -> Technique {
+    if only_point_lights(scene) {
+        Technique::Cube
+    } else {
+        Technique::Lispsm(WarpChoice::PAPER)
+    }
+}
+
+/// Whether every light of `scene` is a point light.
+fn only_point_lights(scene: &Scene) -> bool {
+    scene
+        .lights
+        .iter()
+        .all(|light| matches!(light, SceneLight::Point { .. }))
+}
+
+/// The techniques a study command measures: those given (`--techniques`), else its default for
+/// directional and spot lights (`directed`, a comma-separated list) — or, for a scene of point
+/// lights, [`POINT_LIGHT_TECHNIQUES`]; for a scene that mixes point lights with others, PSM, the one
+/// technique that serves both.
+///
+/// # Errors
+/// As [`check_techniques`], for `--techniques`.
+pub(crate) fn study_techniques(
+    scene: &Scene,
+    given: Option<&[Technique]>,
+    directed: &str,
+) -> Result<Vec<Technique>, CliError> {
+    let techniques = default_or_given(scene, given, directed);
+    check_techniques(scene, &techniques, "--techniques")?;
+    Ok(techniques)
+}
+
+/// The techniques given, or the default of [`study_techniques`].
+fn default_or_given(scene: &Scene, given: Option<&[Technique]>, directed: &str) -> Vec<Technique> {
+    if let Some(given) = given {
+        return given.to_vec();
+    }
+    let has_point = scene
+        .lights
+        .iter()
+        .any(|light| matches!(light, SceneLight::Point { .. }));
+    let list = match (has_point, only_point_lights(scene)) {
+        (false, _) => directed,
+        (true, true) => POINT_LIGHT_TECHNIQUES,
+        (true, false) => "psm",
+    };
+    list.split(',')
+        .map(|spec| Technique::parse_spec(spec).expect("the default lists parse"))
+        .collect()
+}
+
+/// What study commands measure for a scene of point lights by default.
+pub(crate) const POINT_LIGHT_TECHNIQUES: &str = "cube,dual-paraboloid,psm";
+
+/// Checks that every technique serves every light of `scene`: an input error naming the flag or
+/// field that chose the technique, the light (`light[K]`, its kind) and the techniques that serve
+/// it.
+pub(crate) fn check_techniques(
+    scene: &Scene,
     techniques: &[Technique],
+    flag: &str,
+) -> Result<(), CliError> {
+    for (index, light) in scene.lights.iter().enumerate() {
+        let source = LightSource::from_scene(light);
+        for technique in techniques {
+            technique.check_light(&source).map_err(|error| {
+                CliError::Input(format!("{flag}: light[{index}] of {}: {error}", scene.name))
+            })?;
+        }
+    }
+    Ok(())
+}
+
+/// The techniques of a list (`--techniques`, or the default for the scene's lights:
+/// [`study_techniques`]), then LiSPSM at each stated λ and n (`--lambda`, `--n`), checked against
+/// the scene's lights ([`check_techniques`]).
+pub(crate) fn technique_list(
+    scene: &Scene,
+    given: Option<&[Technique]>,
+    directed: &str,
     stated: &StatedWarps,
 ) -> Result<Vec<Technique>, CliError> {
-    let mut techniques = techniques.to_vec();
+    let mut techniques = default_or_given(scene, given, directed);
     for (flag, values) in [("--lambda", &stated.lambda), ("--n", &stated.near_distance)] {
         let key = if flag == "--lambda" { "lambda" } else { "n" };
         for value in values {
@@ -337,5 +428,6 @@ pub(crate) fn technique_list(
             );
         }
     }
+    check_techniques(scene, &techniques, "--techniques")?;
     Ok(techniques)
 }

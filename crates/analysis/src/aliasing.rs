@@ -66,6 +66,7 @@ use rayon::prelude::*;
 use shadowlab_raster::{EyeImage, NO_TRIANGLE};
 use shadowlab_scene::Camera;
 use shadowlab_shadow::logarithmic::LogarithmicMap;
+use shadowlab_shadow::paraboloid::ParaboloidMap;
 use shadowlab_shadow::{LightSetup, ShadowMapping};
 
 use crate::exact_sum::ExactSum;
@@ -103,12 +104,15 @@ enum Prepared<'a> {
     Projective(DMat4),
     /// The logarithmic map, differentiated in closed form.
     Logarithmic(&'a LogarithmicMap),
+    /// A paraboloid hemisphere, differentiated in closed form.
+    Paraboloid(&'a ParaboloidMap),
 }
 
 impl<'a> Prepared<'a> {
     fn new(mapping: &'a ShadowMapping) -> Self {
         match mapping {
             ShadowMapping::Logarithmic(map) => Self::Logarithmic(map),
+            ShadowMapping::Paraboloid(map) => Self::Paraboloid(map),
             ShadowMapping::Projective(mapping) => Self::Projective(mapping.clip_from_world()),
         }
     }
@@ -125,6 +129,7 @@ impl<'a> Prepared<'a> {
                 Some(At::Projective { m, clip })
             }
             Self::Logarithmic(map) => Some(At::Logarithmic { map, point }),
+            Self::Paraboloid(map) => Some(At::Paraboloid { map, point }),
         }
     }
 }
@@ -136,6 +141,11 @@ enum At<'a> {
     /// The logarithmic map and the point.
     Logarithmic {
         map: &'a LogarithmicMap,
+        point: DVec3,
+    },
+    /// A paraboloid hemisphere and the point.
+    Paraboloid {
+        map: &'a ParaboloidMap,
         point: DVec3,
     },
 }
@@ -153,6 +163,7 @@ impl At<'_> {
             }
             // Window = (ndc + 1)/2.
             Self::Logarithmic { map, point } => Some(map.ndc_derivative(*point, direction)? * 0.5),
+            Self::Paraboloid { map, point } => Some(map.ndc_derivative(*point, direction)? * 0.5),
         }
     }
 }

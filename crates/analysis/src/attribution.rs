@@ -494,12 +494,16 @@ fn texel_surface(
     (i, j): (u32, u32),
 ) -> Option<u32> {
     let side = f64::from(map.resolution);
-    // NDC of the texel centre, as the logarithmic map is cast (`ShadowMap::cast`).
+    // NDC of the texel centre, as the non-projective maps are cast (`ShadowMap::cast`).
     let centre = |k: u32| (f64::from(k) + 0.5) / side * 2.0 - 1.0;
     let (x, y) = (centre(i), centre(j));
     let (ray, t_max) = match (&map.setup.mapping, inverse) {
         (ShadowMapping::Logarithmic(log), _) => {
             let (from, to) = log.texel_ray(x, y);
+            (Ray::new(from, to - from).ok()?, 1.0)
+        }
+        (ShadowMapping::Paraboloid(map), _) => {
+            let (from, to) = map.texel_ray(x, y)?;
             (Ray::new(from, to - from).ok()?, 1.0)
         }
         (ShadowMapping::Projective(_), Some(inverse)) => projective_ray(bvh, inverse, x, y)?,

@@ -8,9 +8,9 @@ use shadowlab_raster::{DepthFormat, EyeImage, NO_TRIANGLE};
 use shadowlab_scene::Scene;
 use shadowlab_shadow::optimal::OptimalOptions;
 use shadowlab_shadow::{
-    Bias, Filter, FocusPolicy, FrameOptions, LightShadow, Lookup, PlanOptions, ShadowError,
-    Shadows, Splits, Technique, Timings, eye_pass, lit_with, render_shadows, scene_eye, served,
-    view::shade_eye,
+    Bias, Filter, FocusPolicy, FrameOptions, LightShadow, LightSource, Lookup, PlanOptions,
+    ShadowError, Shadows, Splits, Technique, Timings, eye_pass, lit_with, render_shadows,
+    scene_eye, served, view::shade_eye,
 };
 use shadowlab_trace::Bvh;
 
@@ -508,6 +508,12 @@ pub fn run_observed<E: From<AnalysisError>>(
     mut progress: impl FnMut(usize, usize, Option<&Setting>),
     mut observe: impl FnMut(&Observed<'_>) -> Result<(), E>,
 ) -> Result<Study, E> {
+    for light in &scene.lights {
+        let light = LightSource::from_scene(light);
+        for technique in &options.techniques {
+            technique.check_light(&light).map_err(AnalysisError::from)?;
+        }
+    }
     let start = Instant::now();
     let eye = EyePass::new(scene).map_err(AnalysisError::from)?;
     let bvh = scene_bvh(scene)?;

@@ -68,8 +68,25 @@ pub struct SweepPoint {
     pub outcome: Result<(Misclassification, f64), String>,
 }
 
-/// Sweeps the scene's first light (replaced by a directional one) over `angles` for every
-/// technique, at one resolution and filter.
+/// The scene's first light moved to lie along `to_light` from the eye: a point light at its own
+/// distance from the eye (its range kept), so that γ is the angle between the view and the
+/// direction from the eye to it; any other light replaced by a directional one along `to_light`.
+fn swept_light(scene: &Scene, to_light: DVec3) -> SceneLight {
+    match scene.lights.first() {
+        Some(&SceneLight::Point { position, range }) => {
+            let eye = scene.camera.pose.eye();
+            SceneLight::Point {
+                position: eye + to_light * (position - eye).length(),
+                range,
+            }
+        }
+        _ => SceneLight::Directional { to_light },
+    }
+}
+
+/// Sweeps the scene's first light over `angles` for every technique, at one resolution and
+/// filter: a point light around the eye at its distance, any other as a directional light
+/// ([`swept_light`]).
 ///
 /// # Errors
 /// Truth and rendering errors other than a technique not being defined.
@@ -101,9 +118,7 @@ pub fn sweep(
     let total = angles.len() * techniques.len();
     for gamma in angles {
         let mut lit_scene = scene.clone();
-        lit_scene.lights = vec![SceneLight::Directional {
-            to_light: light_at(scene, *gamma, side),
-        }];
+        lit_scene.lights = vec![swept_light(scene, light_at(scene, *gamma, side))];
         let eye = EyePass::new(&lit_scene)?;
         let truth = exact_truth(&lit_scene, &eye.image, &bvh)?;
         for technique in techniques {

@@ -90,15 +90,20 @@ pub fn curves(scene: &Scene, techniques: &[Technique]) -> Result<Vec<AxisCurve>,
     for &technique in techniques {
         if matches!(
             technique,
-            Technique::Optimal(_) | Technique::Sdsm(_) | Technique::Engine(..)
+            Technique::Optimal(_)
+                | Technique::Sdsm(_)
+                | Technique::Engine(..)
+                | Technique::Cube
+                | Technique::DualParaboloid
         ) {
-            // Planned from the scene's or the eye pass's samples, or as cascades for a map size,
-            // not from a plan input: no V-fitted counterpart.
+            // Planned from the scene's or the eye pass's samples, as cascades for a map size, or
+            // with near planes at the scene's geometry, not from a plan input: no V-fitted
+            // counterpart.
             continue;
         }
         let planned = |input: &PlanInput| match plan(input, technique) {
             Ok(setup) => Ok(Some(setup)),
-            Err(ShadowError::NotDefined { .. }) => Ok(None),
+            Err(ShadowError::NotDefined { .. } | ShadowError::LightInsideFocusBody) => Ok(None),
             Err(e) => Err(AnalysisError::from(e)),
         };
         let (view_setup, scene_setup) = (planned(&view_input)?, planned(&scene_input)?);
@@ -153,7 +158,7 @@ fn closed_form(technique: Technique, setup: &LightSetup, range: DepthRange, t: f
         // reference point is the eye; elsewhere `LogarithmicMap::view_axis_error`.
         Technique::Logarithmic(_) => match &setup.mapping {
             ShadowMapping::Logarithmic(map) => Some(map.view_axis_error(setup.gamma.sin(), t)),
-            ShadowMapping::Projective(_) => None,
+            ShadowMapping::Projective(_) | ShadowMapping::Paraboloid(_) => None,
         },
         Technique::Psm
         | Technique::Optimal(_)

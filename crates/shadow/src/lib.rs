@@ -29,6 +29,7 @@
 pub mod bias;
 mod cascade_fit;
 pub mod cascades;
+pub mod cube;
 mod error;
 pub mod faces;
 mod focus;
@@ -39,7 +40,9 @@ mod logarithmic_map;
 mod lookup;
 mod map;
 pub mod measure;
+mod omni;
 pub mod optimal;
+pub mod paraboloid;
 mod parameter;
 mod partition;
 mod plan;
@@ -62,7 +65,8 @@ pub use faces::FaceRegion;
 pub use input::{Eye, FocusPolicy, LightSource, PlanInput};
 pub use lookup::{DEFAULT_DISK_SEED, DEFAULT_MIN_VARIANCE, Filter, Lookup, MomentMethod};
 pub use map::{MapOptions, ShadowMap};
-pub use partition::{CullingSphere, Partition};
+pub use omni::LightFace;
+pub use partition::{CullingSphere, Partition, Region};
 pub use plan::{Splits, plan, plan_partitions};
 pub use render::{
     FLAT_SCENE_THICKNESS, FLAT_SCENE_ULPS, Frame, FrameOptions, GivenDepths, LightMaps,

@@ -45,20 +45,20 @@ impl ShadowMap {
     /// Renders `setup`'s map of `mesh` with the rasterizer.
     ///
     /// # Errors
-    /// [`ShadowError::NotDefined`] for the logarithmic map, which is not projective and is made by
-    /// [`crate::logarithmic`] ray casting instead; the rasterizer's errors (bad indices, sizes) as
+    /// [`ShadowError::NotDefined`] for the logarithmic and paraboloid maps, which are not
+    /// projective and are cast instead ([`Self::cast`]); the rasterizer's errors (bad indices, sizes) as
     /// [`ShadowError::Raster`].
     pub fn render(
         setup: &LightSetup,
         mesh: Triangles<'_>,
         options: MapOptions,
     ) -> Result<Self, ShadowError> {
-        let ShadowMapping::Projective(_) = setup.mapping else {
+        if setup.mapping.is_cast() {
             return Err(ShadowError::NotDefined {
                 technique: setup.technique.key(),
-                reason: "the logarithmic map is not projective: cast rays instead".into(),
+                reason: "the map is not projective: cast rays instead".into(),
             });
-        };
+        }
         let clip_from_world = setup
             .mapping
             .clip_from_world()
@@ -83,28 +83,37 @@ impl ShadowMap {
         })
     }
 
-    /// Makes the logarithmic map exactly: one ray of light per texel centre, found through the
-    /// inverse mapping ([`crate::logarithmic::LogarithmicMap::texel_ray`]), cast against `bvh`;
-    /// the first hit's depth (and the second's, if asked for) through the forward mapping, stored
-    /// in `options.format`. Rows are cast in parallel, each row's rays in batches of at most
-    /// [`RAY_CHUNK`] ([`Bvh::closest_hits`], which traces neighbouring texels' rays together);
-    /// each texel's value depends on its ray alone.
+    /// Makes a non-projective map exactly — the logarithmic map, a paraboloid hemisphere — one ray
+    /// of light per texel centre, found through the inverse mapping
+    /// ([`crate::logarithmic::LogarithmicMap::texel_row`], [`crate::paraboloid::ParaboloidMap::texel_ray`]), cast
+    /// against `bvh`; the first hit's depth (and the second's, if asked for) through the forward
+    /// mapping, stored in `options.format`. A texel with no ray (outside a paraboloid's disk) or
+    /// whose ray meets nothing stores 1. Rows are cast in parallel, each row's rays in batches of
+    /// at most [`RAY_CHUNK`] ([`Bvh::closest_hits`], which traces neighbouring texels' rays
+    /// together); each texel's value depends on its ray alone.
     ///
     /// # Errors
     /// [`ShadowError::NotDefined`] for a projective set-up (rasterize it with [`Self::render`]);
     /// [`ShadowError::Trace`] if a texel's ray is invalid (a degenerate map).
     pub fn cast(setup: &LightSetup, bvh: &Bvh, options: MapOptions) -> Result<Self, ShadowError> {
-        let ShadowMapping::Logarithmic(map) = &setup.mapping else {
+        let mapping = &setup.mapping;
+        if !mapping.is_cast() {
             return Err(ShadowError::NotDefined {
                 technique: setup.technique.key(),
                 reason: "a projective map is rasterized, not cast".into(),
             });
-        };
+        }
         let side = options.resolution as usize;
         #[expect(clippy::cast_precision_loss, reason = "texel indices are small")]
         let centre = |k: usize| (k as f64 + 0.5) / side as f64 * 2.0 - 1.0;
         let store = |ray: &Ray, t: f64| {
-            let depth = map.ndc_depth(ray.at(t)).map_or(1.0, |z| 0.5 * (z + 1.0));
+            let point = ray.at(t);
+            let ndc = match mapping {
+                ShadowMapping::Logarithmic(map) => map.ndc_depth(point),
+                ShadowMapping::Paraboloid(map) => Some(map.ndc_depth(point)),
+                ShadowMapping::Projective(_) => None,
+            };
+            let depth = ndc.map_or(1.0, |z| 0.5 * (z + 1.0));
             options.format.decode(options.format.encode(depth))
         };
         // Row j's depths into `nearest` and, if asked for, `second`.
@@ -112,30 +121,41 @@ impl ShadowMap {
                         nearest: &mut [f64],
                         mut second: Option<&mut [f64]>|
          -> Result<(), ShadowError> {
-            // 1 where a texel's ray meets nothing.
+            // 1 where a texel has no ray or its ray meets nothing.
             nearest.fill(1.0);
             if let Some(second) = second.as_deref_mut() {
                 second.fill(1.0);
             }
-            let row = map.texel_row(centre(j));
+            let y = centre(j);
+            let row = match mapping {
+                ShadowMapping::Logarithmic(map) => Some(map.texel_row(y)),
+                _ => None,
+            };
+            let ray_of = |i: usize| match (mapping, &row) {
+                (_, Some(row)) => Some(row.ray(centre(i))),
+                (ShadowMapping::Paraboloid(map), None) => map.texel_ray(centre(i), y),
+                _ => None,
+            };
             // The row's rays in texel order, neighbours side by side, in batches of at most one
             // work item of the batch query (so that it runs on this thread, not split).
             for first in (0..side).step_by(RAY_CHUNK) {
-                let rays = (first..side.min(first + RAY_CHUNK))
-                    .map(|i| {
-                        let (from, to) = row.ray(centre(i));
-                        Ray::new(from, to - from)
-                    })
-                    .collect::<Result<Vec<Ray>, _>>()?;
+                let mut texels = Vec::with_capacity(RAY_CHUNK);
+                let mut rays = Vec::with_capacity(RAY_CHUNK);
+                for i in first..side.min(first + RAY_CHUNK) {
+                    if let Some((from, to)) = ray_of(i) {
+                        texels.push(i);
+                        rays.push(Ray::new(from, to - from)?);
+                    }
+                }
                 let firsts = bvh.closest_hits(&rays, 0.0, 1.0);
-                for (k, (ray, hit)) in rays.iter().zip(firsts).enumerate() {
+                for ((texel, ray), hit) in texels.into_iter().zip(&rays).zip(firsts) {
                     let Some(hit) = hit else { continue };
-                    nearest[first + k] = store(ray, hit.t);
+                    nearest[texel] = store(ray, hit.t);
                     // The next surface: beyond the first by more than SAME_SURFACE, so that the
                     // first surface's neighbour across a shared edge (hit a few ulps further) is
                     // not taken for it.
                     if let Some(second) = second.as_deref_mut() {
-                        second[first + k] = bvh
+                        second[texel] = bvh
                             .closest_hit(ray, hit.t + SAME_SURFACE, 1.0)
                             .map_or(1.0, |h| store(ray, h.t));
                     }

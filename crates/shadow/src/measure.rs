@@ -37,7 +37,7 @@ pub fn view_axis_error(mapping: &ShadowMapping, eye: &Eye, t: f64) -> Option<f64
             let derivative = |k: usize| 0.5 * (dp[k] * p.w - p[k] * dp.w) / (p.w * p.w);
             DVec3::new(derivative(0), derivative(1), 0.0).length()
         }
-        ShadowMapping::Logarithmic(_) => {
+        ShadowMapping::Logarithmic(_) | ShadowMapping::Paraboloid(_) => {
             let at = |t: f64| mapping.window(e + v * t).map(|w| w.truncate());
             let central = |h: f64| Some((at(t + h)? - at(t - h)?) / (2.0 * h));
             let h = STEP * t;

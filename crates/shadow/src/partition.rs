@@ -4,6 +4,7 @@
 use glam::DVec3;
 
 use crate::faces::FaceRegion;
+use crate::omni::LightFace;
 use crate::setup::LightSetup;
 
 /// One part of a partitioned shadow: the eye depths it serves (z-partitioning), the part of the
@@ -14,14 +15,55 @@ pub struct Partition {
     pub near: f64,
     /// The eye depth where it ends.
     pub far: f64,
-    /// For a face partition ([`crate::faces`]), the face of its z-partition's view whose projection
-    /// it serves; `None`: all of the view at these depths.
-    pub face: Option<FaceRegion>,
+    /// The part of the view it serves among partitions of the same depths: a face of its
+    /// z-partition's view ([`crate::faces`]) or of a point light's cube or dual paraboloid
+    /// ([`LightFace`]); `None`: all of the view at these depths.
+    pub face: Option<Region>,
     /// For a cascade fitted to a bounding sphere, the sphere (`SelectionRule::Containing` tests
     /// it); `None` otherwise.
     pub sphere: Option<CullingSphere>,
     /// Its light set-up, planned for the sub-frustum `[near, far]` (and the face).
     pub setup: LightSetup,
+}
+
+/// The part of the view a partition serves among those of the same depths: the one whose region
+/// holds a point most deeply serves it ([`crate::served`]).
+#[derive(Clone, Debug, PartialEq)]
+pub enum Region {
+    /// A face of the view frustum, as the light sees it (the logarithmic map's face partitioning).
+    ViewFace(FaceRegion),
+    /// A face of a point light's cube, or a hemisphere of its dual-paraboloid map.
+    LightFace(LightFace),
+}
+
+impl Region {
+    /// How far inside the region `world` lies (positive inside): [`FaceRegion::inside`] or
+    /// [`LightFace::inside`].
+    #[must_use]
+    pub fn inside(&self, world: DVec3) -> f64 {
+        match self {
+            Self::ViewFace(face) => face.inside(world),
+            Self::LightFace(face) => face.inside(world),
+        }
+    }
+
+    /// Its name: the view face's (`left`, …, `far`) or the light face's (`+x`, …, `front`).
+    #[must_use]
+    pub fn name(&self) -> &'static str {
+        match self {
+            Self::ViewFace(face) => face.name(),
+            Self::LightFace(face) => face.name,
+        }
+    }
+
+    /// The view face, if it is one.
+    #[must_use]
+    pub fn view_face(&self) -> Option<&FaceRegion> {
+        match self {
+            Self::ViewFace(face) => Some(face),
+            Self::LightFace(_) => None,
+        }
+    }
 }
 
 /// A cascade's culling sphere (Unity URP: `_CascadeShadowSplitSpheres`): the bound the

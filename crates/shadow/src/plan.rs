@@ -10,7 +10,7 @@ use crate::faces;
 use crate::focus::{focus_in_light_space, view_model};
 use crate::input::PlanInput;
 use crate::parameter::{self, WarpGeometry};
-use crate::partition::Partition;
+use crate::partition::{Partition, Region};
 use crate::setup::{LightSetup, ProjectiveMapping, ShadowMapping, WarpReport};
 use crate::technique::{LogarithmicChoice, Technique, WarpChoice};
 use crate::warp::{self, Extents};
@@ -253,7 +253,7 @@ pub(crate) fn plan_partitions_at(
             partitions.extend(faces::plan(&part)?.into_iter().map(|face| Partition {
                 near,
                 far,
-                face: Some(face.region),
+                face: Some(Region::ViewFace(face.region)),
                 sphere: None,
                 setup: face.setup,
             }));

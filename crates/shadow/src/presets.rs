@@ -289,7 +289,7 @@ impl Engine {
             ShadowMapping::Projective(mapping) => {
                 2.0 / mapping.projection().x_axis.x.abs() / f64::from(resolution)
             }
-            ShadowMapping::Logarithmic(_) => 0.0,
+            ShadowMapping::Logarithmic(_) | ShadowMapping::Paraboloid(_) => 0.0,
         };
         let slope = |slope, units: f64| {
             Bias::new(DepthComparison::SlopeScaled {

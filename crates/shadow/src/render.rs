@@ -17,14 +17,13 @@ use crate::input::{Eye, FocusPolicy, LightSource, PlanInput};
 use crate::lookup::Lookup;
 use crate::map::{MapOptions, ShadowMap};
 use crate::optimal::{self, OptimalOptions};
-use crate::partition::Partition;
+use crate::partition::{Partition, Region};
 use crate::plan::{Splits, plan_partitions};
-use crate::sdsm;
 use crate::selection::Selection;
 use crate::serving::served;
-use crate::setup::ShadowMapping;
 use crate::snap::snap_to_texels;
 use crate::technique::Technique;
+use crate::{cube, paraboloid, sdsm};
 
 /// How one light's maps are planned: the technique, the z-partitions, the focus body and the
 /// scene-optimized map's settings.
@@ -261,8 +260,28 @@ pub fn plan_light(
     eye: Option<&EyeImage>,
 ) -> Result<Vec<Partition>, ShadowError> {
     let input = scene_input(scene, light, nearest_visible_depth, options.focus)?;
+    options.technique.check_light(&input.light)?;
     let partitions = options.partitions.max(1);
     match options.technique {
+        Technique::Cube | Technique::DualParaboloid => {
+            let (near, far) = (input.eye.projection.near(), input.eye.projection.far());
+            let (positions, triangles) = (scene.mesh.positions(), scene.mesh.triangles());
+            let faces = if options.technique == Technique::Cube {
+                cube::plan(&input, positions, triangles)?
+            } else {
+                paraboloid::plan(&input, positions, triangles)?
+            };
+            return Ok(faces
+                .into_iter()
+                .map(|(face, setup)| Partition {
+                    near,
+                    far,
+                    face: Some(Region::LightFace(face)),
+                    sphere: None,
+                    setup,
+                })
+                .collect());
+        }
         Technique::Engine(engine, choices) => {
             return engine.plan(&input, options.technique, choices, resolution);
         }
@@ -483,12 +502,10 @@ pub fn shadows_of(
 ) -> Result<Shadows, ShadowError> {
     let mesh = Triangles::new(scene.mesh.positions(), scene.mesh.triangles());
     let view = scene_eye(scene);
-    let cast = lights.iter().flat_map(|l| &l.partitions).any(|p| {
-        matches!(
-            (&p.source, &p.partition.setup.mapping),
-            (MapSource::Render(_), ShadowMapping::Logarithmic(_))
-        )
-    });
+    let cast = lights
+        .iter()
+        .flat_map(|l| &l.partitions)
+        .any(|p| matches!(p.source, MapSource::Render(_)) && p.partition.setup.mapping.is_cast());
     let built;
     let bvh = match (bvh, cast) {
         (Some(bvh), _) => Some(bvh),
@@ -511,8 +528,8 @@ pub fn shadows_of(
         } in light.partitions
         {
             let map = match source {
-                MapSource::Render(options) => match (&partition.setup.mapping, bvh) {
-                    (ShadowMapping::Logarithmic(_), Some(bvh)) => {
+                MapSource::Render(options) => match bvh {
+                    Some(bvh) if partition.setup.mapping.is_cast() => {
                         ShadowMap::cast(&partition.setup, bvh, options)
                     }
                     _ => ShadowMap::render(&partition.setup, mesh, options),

@@ -4,6 +4,7 @@
 use glam::{DMat4, DVec3};
 
 use crate::logarithmic_map::LogarithmicMap;
+use crate::paraboloid::ParaboloidMap;
 use crate::technique::Technique;
 
 /// How world points map to the shadow map.
@@ -15,6 +16,9 @@ pub enum ShadowMapping {
     Projective(ProjectiveMapping),
     /// The logarithmic parameterisation, evaluated exactly (see [`LogarithmicMap`]).
     Logarithmic(LogarithmicMap),
+    /// One hemisphere of a point light's dual-paraboloid map, evaluated exactly (see
+    /// [`ParaboloidMap`]).
+    Paraboloid(ParaboloidMap),
 }
 
 /// A projective mapping: a view and a projection matrix, and their product formed once.
@@ -83,8 +87,16 @@ impl ShadowMapping {
                 clip.truncate() / clip.w
             }
             Self::Logarithmic(map) => map.ndc(world)?,
+            Self::Paraboloid(map) => map.ndc(world)?,
         };
         Some((ndc + DVec3::ONE) * 0.5)
+    }
+
+    /// Whether the map is made by casting a ray per texel (the logarithmic and paraboloid maps,
+    /// which are not projective: [`crate::ShadowMap::cast`]) rather than rasterized.
+    #[must_use]
+    pub fn is_cast(&self) -> bool {
+        !matches!(self, Self::Projective(_))
     }
 
     /// World → GL clip space, for the projective techniques.
@@ -92,7 +104,7 @@ impl ShadowMapping {
     pub fn clip_from_world(&self) -> Option<DMat4> {
         match self {
             Self::Projective(mapping) => Some(mapping.clip_from_world),
-            Self::Logarithmic(_) => None,
+            Self::Logarithmic(_) | Self::Paraboloid(_) => None,
         }
     }
 }

@@ -4,7 +4,9 @@
 use glam::DMat4;
 use shadowlab_hull::NdcDepth;
 use shadowlab_scene::{Camera, Scene};
-use shadowlab_shadow::{FrameOptions, Partition, ShadowMapping, Technique, eye_pass, plan_frame};
+use shadowlab_shadow::{
+    FrameOptions, Partition, Region, ShadowMapping, Technique, eye_pass, plan_frame,
+};
 
 use super::error::SetupError;
 use super::file::{
@@ -95,7 +97,20 @@ fn entry(
                 }
             )));
         }
-        (Some(_), ShadowMapping::Projective(_)) => {
+        (_, ShadowMapping::Paraboloid(_)) => {
+            return Err(refused(&format!(
+                "a dual-paraboloid hemisphere is not a matrix: the paraboloid (x, y) = \
+                 (d_x, d_y)/(1 + d_z) is not projective, so version {VERSION} of the set-up format \
+                 has no fields for it"
+            )));
+        }
+        (Some(Region::LightFace(_)), ShadowMapping::Projective(_)) => {
+            return Err(refused(
+                "its faces are chosen per pixel by the direction from the light (a cube map), \
+                 and the format's partitions are chosen by eye depth alone",
+            ));
+        }
+        (Some(Region::ViewFace(_)), ShadowMapping::Projective(_)) => {
             return Err(refused(
                 "its partitions are chosen per pixel by the face of the view frustum a point \
                  projects into, and the format's partitions are chosen by eye depth alone",

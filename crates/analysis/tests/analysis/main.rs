@@ -17,6 +17,8 @@
 //!   shadowlab wrote measure what rendering does; a perturbed map as its rule predicts; shimmer as
 //!   `temporal`'s;
 //! - `sweep`: the logarithmic map's misclassified pixels continuous across γ = φ and at γ = 0;
+//! - `point_lights`: the cube map against the exact truth, converging with resolution; a
+//!   technique that cannot serve a point light is its setting's error;
 //! - `temporal`: the camera walk, and a frame where the optimizer keeps the initial map;
 //! - `view_axis`: measured on the matrices against the closed form at 90°;
 //! - `support`: scenes, hand-built eye images, the seeded configuration.
@@ -27,6 +29,7 @@ mod classify;
 mod evaluate;
 mod images;
 mod pictures;
+mod point_lights;
 mod report_html;
 mod setup_file;
 mod support;

@@ -72,7 +72,11 @@ fn back_faces_tile_the_view_and_cover_what_they_serve() {
                 parts.len()
             );
             for part in &parts {
-                let face = part.face.as_ref().expect("face partitions have regions");
+                let face = part
+                    .face
+                    .as_ref()
+                    .and_then(|f| f.view_face())
+                    .expect("face partitions have view-face regions");
                 let warp = part.setup.warp.as_ref().unwrap();
                 if face.face < 4 {
                     let z_max = warp.inputs.iter().find(|(n, _)| *n == "z_max").unwrap().1;
@@ -99,7 +103,7 @@ fn back_faces_tile_the_view_and_cover_what_they_serve() {
                 assert!(
                     window.min_element() >= -1e-9 && window.max_element() <= 1.0 + 1e-9,
                     "γ = {gamma_degrees}, facing {facing}: {point} at {window} of face {}",
-                    parts[k].face.as_ref().unwrap().face
+                    parts[k].face.as_ref().unwrap().view_face().unwrap().face
                 );
             }
         }
@@ -124,7 +128,10 @@ fn the_overhead_light_has_one_face_the_plain_logarithmic_map() {
     );
     let parts = faces_of(&input);
     assert_eq!(parts.len(), 1);
-    assert_eq!(parts[0].face.as_ref().unwrap().face, shadowlab_hull::BOTTOM);
+    assert_eq!(
+        parts[0].face.as_ref().unwrap().view_face().unwrap().face,
+        shadowlab_hull::BOTTOM
+    );
     let plain = plan(&input, Technique::LOGARITHMIC).unwrap();
     for (point, _) in points_of_view(&input) {
         let (a, b) = (
@@ -153,7 +160,7 @@ fn the_dueling_frusta_get_four_side_faces_and_the_near_face() {
     );
     let mut faces: Vec<usize> = faces_of(&input)
         .iter()
-        .map(|p| p.face.as_ref().unwrap().face)
+        .map(|p| p.face.as_ref().unwrap().view_face().unwrap().face)
         .collect();
     faces.sort_unstable();
     assert_eq!(faces, [0, 1, 2, 3, 4]);

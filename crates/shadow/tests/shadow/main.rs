@@ -14,6 +14,8 @@
 //! - `lookups`: rendered maps looked up: shadows where geometry puts them, biases against acne,
 //!   filters only at edges, seeded disks;
 //! - `limits`: γ → 0, γ = φ, γ = 90°, far/near up to 1e9: finite, continuous, tending to uniform;
+//! - `omni`: point lights: the cube's faces serve what their maps hold, its near planes are the
+//!   nearest geometry, techniques that cannot serve a light say so;
 //! - `optimal`: the scene-optimized map's objective, gradient, descent and plans (CG06);
 //! - `pictures`: the annotated eye and light views hold the raw ones pixel for pixel;
 //! - `rules`: each warp-parameter choice computes what its source computes, in its units; stated
@@ -31,6 +33,7 @@ mod given;
 mod golden;
 mod limits;
 mod lookups;
+mod omni;
 mod optimal;
 mod pictures;
 mod rules;

@@ -41,7 +41,9 @@ fn in_view(input: &PlanInput, (u, w, t): (f64, f64, f64)) -> DVec3 {
 fn projection(partition: &Partition) -> (DMat4, DMat4) {
     match partition.setup.mapping {
         ShadowMapping::Projective(mapping) => (mapping.view(), mapping.projection()),
-        ShadowMapping::Logarithmic(_) => panic!("an SDSM map is projective"),
+        ShadowMapping::Logarithmic(_) | ShadowMapping::Paraboloid(_) => {
+            panic!("an SDSM map is projective")
+        }
     }
 }
 

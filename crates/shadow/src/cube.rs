@@ -1,0 +1,125 @@
+//! The cube shadow map of a point light (Gerasimov, *Omnidirectional Shadow Mapping*, GPU Gems
+//! ch. 12, 2004 — what every engine ships for point lights: Filament's, Godot's, Bevy's and
+//! three.js's point-light shadows are six 90° views).
+//!
+//! Each face `k` of the cube is a perspective frustum from the light with a 90° field of view and
+//! aspect 1, looking along its world axis, oriented as OpenGL orients its cube-map faces (OpenGL
+//! 4.6 §8.13, Table 8.19: up −y for the ±x and ±z faces, +z for +y and −z for −y), so the six
+//! tile every direction and meet edge to edge. A face serves the directions whose major axis is
+//! its own ([`LightFace`]). What shadowlab focuses per face:
+//!
+//! - the face's part of B, `B_k = B ∩` (the face's pyramid from the light); a face whose part is
+//!   empty, or holds no geometry, has no map (it serves no visible point);
+//! - **far** = the greatest depth along the face's axis of `B_k`'s vertices, no further than the
+//!   light's range;
+//! - **near** = the least depth along the axis of the scene's geometry inside `B_k`
+//!   ([`nearest_depth`]) — the cube's near plane chosen from the scene, not a constant, as large
+//!   as keeps every occluder in front of it, for the depth precision the near plane decides.
+//!   Geometry touching the light would put it at 0; it is kept at [`MIN_NEAR_FRACTION`] of far.
+//!
+//! Engines use one near plane for all six faces (a constant, or the light's radius); per-face
+//! nears are shadowlab's focusing, named here so that the two are not confused.
+
+use glam::DVec3;
+use shadowlab_hull::{NdcDepth, Perspective, Tolerances, ViewPose};
+
+use crate::error::ShadowError;
+use crate::focus::{focus_polyhedron, view_model};
+use crate::input::{LightSource, PlanInput};
+use crate::omni::{LightFace, nearest};
+use crate::setup::{LightSetup, ProjectiveMapping, ShadowMapping};
+use crate::technique::Technique;
+
+/// The least near distance of a face, as a fraction of its far distance: where geometry touches
+/// the light, the near plane cannot reach it, and what lies nearer is left out of the map.
+pub const MIN_NEAR_FRACTION: f64 = 1e-5;
+
+/// The cube's faces in OpenGL's order (+x, −x, +y, −y, +z, −z): name, view direction and the
+/// up vector of its image (OpenGL 4.6 Table 8.19).
+const FACES: [(&str, DVec3, DVec3); 6] = [
+    ("+x", DVec3::X, DVec3::NEG_Y),
+    ("-x", DVec3::NEG_X, DVec3::NEG_Y),
+    ("+y", DVec3::Y, DVec3::Z),
+    ("-y", DVec3::NEG_Y, DVec3::NEG_Z),
+    ("+z", DVec3::Z, DVec3::NEG_Y),
+    ("-z", DVec3::NEG_Z, DVec3::NEG_Y),
+];
+
+/// Plans the cube map of `input`'s point light over the scene's triangles (`positions`,
+/// `triangles`): one set-up per face that serves part of B, with the face it serves.
+///
+/// # Errors
+/// [`ShadowError::UnservedLight`] for a light that is not a point light;
+/// [`ShadowError::EmptyFocusBody`] if no face holds geometry of B; geometry errors.
+pub(crate) fn plan(
+    input: &PlanInput,
+    positions: &[DVec3],
+    triangles: &[[u32; 3]],
+) -> Result<Vec<(LightFace, LightSetup)>, ShadowError> {
+    let LightSource::Point { position, range } = input.light else {
+        return Err(ShadowError::UnservedLight {
+            technique: Technique::Cube.key(),
+            light: input.light.kind(),
+            serving: Technique::DIRECTED_LIGHT_TECHNIQUES,
+        });
+    };
+    let body = focus_polyhedron(input)?;
+    let (_, half_fov) = view_model(input)?;
+    let e = input.eye.pose.eye();
+    let gamma =
+        shadowlab_hull::light_view_angle(input.eye.pose.forward(), input.light.toward_from(e))?;
+    let mut faces = Vec::new();
+    for (name, axis, up) in FACES {
+        let right = axis.cross(up);
+        let face = LightFace {
+            name,
+            light: position,
+            axis,
+            across: Some([right, up]),
+        };
+        let Some(part) = body.intersect_planes(&face.planes(), &Tolerances::DEFAULT) else {
+            continue;
+        };
+        let depth = |p: DVec3| axis.dot(p - position);
+        let far = part
+            .vertices()
+            .iter()
+            .map(|v| depth(*v))
+            .fold(0.0, f64::max);
+        let far = range.map_or(far, |range| far.min(range));
+        // An affine depth is least at a corner of the clipped triangle.
+        let Some(nearest) = nearest(&part, positions, triangles, |polygon| {
+            polygon
+                .iter()
+                .map(|p| depth(*p))
+                .fold(f64::INFINITY, f64::min)
+        }) else {
+            continue;
+        };
+        if far <= 0.0 || nearest >= far {
+            continue;
+        }
+        let near = nearest.max(far * MIN_NEAR_FRACTION);
+        let view = ViewPose::look_to(position, axis, up)?;
+        let projection = Perspective::new(std::f64::consts::FRAC_PI_2, 1.0, near, far)?;
+        faces.push((
+            face,
+            LightSetup {
+                technique: Technique::Cube,
+                mapping: ShadowMapping::Projective(ProjectiveMapping::new(
+                    view.view_matrix(),
+                    projection.matrix(NdcDepth::NegativeOneToOne),
+                )),
+                gamma,
+                half_fov,
+                warp: None,
+                psm: None,
+                focus_body: part.vertices().to_vec(),
+            },
+        ));
+    }
+    if faces.is_empty() {
+        return Err(ShadowError::EmptyFocusBody);
+    }
+    Ok(faces)
+}
