@@ -33,7 +33,8 @@
 //!    a pair not caused as above whose pixel lies **in a blend band** (served by two maps).
 //! 4. **Seam at a boundary** ([`Cause::SeamBoundary`]) — likewise, outside any band, a pixel with
 //!    a **4-neighbour** (a pixel that sees a surface) **served by another partition**: the hard
-//!    boundary between cascades, or a band's edge.
+//!    boundary between cascades, a band's edge, or the seam between two faces of a point light's
+//!    cube map or the two hemispheres of its dual-paraboloid map (each face is a partition).
 //! 5. **Aliasing** ([`Cause::Aliasing`]) — the rest: too few texels where the pixel samples,
 //!    wherever the shadow's edge is.
 //!

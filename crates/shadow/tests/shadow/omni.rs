@@ -267,3 +267,41 @@ fn the_paraboloid_inverts_and_differentiates_exactly() {
         assert!(map.ndc(light - axis).is_none(), "the opposite pole");
     }
 }
+
+/// Claim: PSM serves a point light as one map in the camera's post-perspective space (§4): an
+/// ordinary point light in front of the viewer, and the *inverted* one behind it (the plane
+/// through the eye perpendicular to the view separates them), each holding every visible point
+/// in its window.
+#[test]
+fn psm_serves_a_point_light_in_front_of_and_behind_the_viewer() {
+    let chess = builtin_scene("chess-spot").unwrap();
+    let SceneLight::Spot { pose, .. } = &chess.lights[0] else {
+        panic!("chess-spot has a spot light")
+    };
+    let camera = &chess.camera.pose;
+    // The spot's own position, and a point light behind the camera, above it.
+    let behind = camera.eye() - camera.forward() * 3.0 + DVec3::Y * 4.0;
+    for (position, inverted) in [(pose.eye(), false), (behind, true)] {
+        let scene = point_lit("chess-spot", position, None);
+        let in_front = (position - camera.eye()).dot(camera.forward()) > 0.0;
+        assert_eq!(in_front, !inverted, "the configuration");
+        let frame = render_frame(&scene, &options(Technique::Psm)).unwrap();
+        let (_, map) = &frame.lights[0].maps[0];
+        let report = map.setup.psm.unwrap();
+        assert_eq!(report.inverted, inverted, "{position}");
+        let mut seen = 0;
+        for (pixel, &triangle) in frame.eye.triangle.iter().enumerate() {
+            if triangle == NO_TRIANGLE {
+                continue;
+            }
+            let w = map.setup.mapping.window(frame.eye.position[pixel]).unwrap();
+            let slack = 1e-9;
+            assert!(
+                w.x > -slack && w.x < 1.0 + slack && w.y > -slack && w.y < 1.0 + slack,
+                "{position}: {w}"
+            );
+            seen += 1;
+        }
+        assert!(seen > 1000);
+    }
+}
