@@ -283,7 +283,8 @@ pub fn load_scene_with_warnings(path: &Path) -> Result<LoadedScene, SceneFileErr
 ///   warning, if that suffices. The image is [`DEFAULT_IMAGE`], and its width / height is the
 ///   aspect (the file's `aspectRatio`, if it differs, is a warning). Without a perspective
 ///   camera: the default camera of scene files (framing the bounds);
-/// - **lights**: the directional and spot lights; a spot's far distance is its `range`, or the
+/// - **lights**: the directional, point and spot lights; a point light's `range` is its range
+///   (unlimited without one); a spot's far distance is its `range`, or the
 ///   scene files' default, and its near distance the scene files' default for that far distance
 ///   (`KHR_lights_punctual` gives none). Without lights: the default sun of scene files;
 /// - **name**: the glTF scene's `name`, else the file's stem; **shadow** settings: none.
