@@ -814,7 +814,7 @@ fn unreadable_files_and_unknown_built_ins() {
     assert_eq!(
         error.to_string(),
         "there is no built-in scene `indoor`; the built-in scenes are outdoor, dueling-frusta, \
-         cad-lattice, chess-spot, bunny"
+         cad-lattice, chess-spot, bunny, room-point, chess-point"
     );
 }
 
