@@ -15,20 +15,27 @@ use crate::scene_file::{self, ObjFiles, SceneFileError};
 /// - `cad-lattice`: thin bars and lattices from near 1 to far 800 (the CAD survey's and GMNPR's
 ///   set-up);
 /// - `chess-spot`: a chess board with simple pieces under a spot light (PSM's figure 1);
-/// - `bunny`: the bunny on a plane, lit from above at an angle.
-pub const BUILTIN_SCENES: [&str; 5] = [
+/// - `bunny`: the bunny on a plane, lit from above at an angle;
+/// - `room-point`: a closed room with furniture and thin objects (legs, spindles, shelves, slats,
+///   a pole) around a point light that hangs below the ceiling, with the camera inside: shadows
+///   in every direction, for cube maps, dual-paraboloid maps and PSM with a point light;
+/// - `chess-point`: `chess-spot`'s board, pieces and camera under a point light off-centre above
+///   the pieces instead of the spot.
+pub const BUILTIN_SCENES: [&str; 7] = [
     "outdoor",
     "dueling-frusta",
     "cad-lattice",
     "chess-spot",
     "bunny",
+    "room-point",
+    "chess-point",
 ];
 
 /// The built-in scene used when none is named.
 pub const DEFAULT_SCENE: &str = "outdoor";
 
 /// The built-in scene files, by name, in the order of [`BUILTIN_SCENES`].
-const SCENE_FILES: [(&str, &str); 5] = [
+const SCENE_FILES: [(&str, &str); 7] = [
     ("outdoor", include_str!("../../../data/scenes/outdoor.toml")),
     (
         "dueling-frusta",
@@ -43,6 +50,14 @@ const SCENE_FILES: [(&str, &str); 5] = [
         include_str!("../../../data/scenes/chess-spot.toml"),
     ),
     ("bunny", include_str!("../../../data/scenes/bunny.toml")),
+    (
+        "room-point",
+        include_str!("../../../data/scenes/room-point.toml"),
+    ),
+    (
+        "chess-point",
+        include_str!("../../../data/scenes/chess-point.toml"),
+    ),
 ];
 
 /// The OBJ files the built-in scenes use, by their `obj` path as written in the scene files.

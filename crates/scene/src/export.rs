@@ -11,8 +11,12 @@
 //! world space. The camera is a node with a perspective camera (`yfov`, `znear`, `zfar`, and
 //! `aspectRatio` = image width / height, and the image size in its `extras` as
 //! `{"shadowlab": {"image": [W, H]}}`, which the reader takes); each light a node with a `KHR_lights_punctual` light
-//! (directional, or spot with `outerConeAngle` = half the cone and `range` = the spot's far
-//! distance). The scene's `name` is the glTF scene's name.
+//! (directional; spot with `outerConeAngle` = half the cone and `range` = the spot's far
+//! distance; point, its node only translated to the position, with the light's `range` when it
+//! has one: `KHR_lights_punctual`'s distance cutoff, which node transforms do not scale). The
+//! scene's `name` is the glTF scene's name. A camera or light value that f32 cannot hold (a
+//! coordinate beyond ±3.4·10³⁸, a distance that would round to 0) is an error,
+//! [`ExportError::ValueOutOfF32Range`], not a file that would not read back.
 //!
 //! **Precision.** glTF stores f32: every position, normal, camera and light value is the f32
 //! nearest the scene's f64 (node rotations are the f32 nearest the f64 quaternion of the pose;
@@ -42,12 +46,15 @@
 //! # camera image 1024 768
 //! # light 0 directional to_light 0.5 0.8 0.3
 //! # light 1 spot eye 1.0 2.0 3.0 forward 0.0 -1.0 0.0 up 0.0 0.0 -1.0 cone 0.5 near 1.0 far 9.0
+//! # light 2 point position 0.0 2.5 -0.5 range 8.0
+//! # light 3 point position 4.0 3.0 1.0
 //! ```
 //!
 //! Vectors are world space (right-handed, y up); `fov_y` and `cone` are full angles in radians;
 //! `to_light` is the unit vector toward a directional light (it travels along the negation);
-//! a camera or spot looks along `forward` with `up` up. Group names have line breaks and other
-//! control characters replaced by `_`.
+//! a camera or spot looks along `forward` with `up` up; a point light's ` range R` is left out
+//! when it has none (unlimited). Group names have line breaks and other control characters
+//! replaced by `_`.
 
 use std::fmt;
 
@@ -71,6 +78,16 @@ pub enum ExportError {
         /// The coordinate.
         value: f64,
     },
+    /// A camera or light value that glTF's f32 cannot hold: a coordinate beyond the f32 range, or
+    /// a distance (`znear`, `zfar`, a light's `range`) that is not a positive finite f32 once
+    /// rounded (glTF and `KHR_lights_punctual` require them > 0). Written anyway, the file would
+    /// hold `null` or `0` there and not read back.
+    ValueOutOfF32Range {
+        /// What the value is, e.g. `light 1 position` or `camera znear`.
+        what: String,
+        /// The value (a coordinate of a vector).
+        value: f64,
+    },
     /// A directional light whose `to_light` is zero or not finite (only a hand-built
     /// [`SceneLight`] can be).
     InvalidLight {
@@ -90,6 +107,11 @@ impl fmt::Display for ExportError {
             Self::OutOfF32Range { vertex, value } => write!(
                 f,
                 "vertex {vertex} has the coordinate {value:e}, beyond the f32 range glTF stores"
+            ),
+            Self::ValueOutOfF32Range { what, value } => write!(
+                f,
+                "{what} has the value {value:e}, which glTF's f32 cannot hold (beyond its range, \
+                 or a distance that would round to 0)"
             ),
             Self::InvalidLight { index } => write!(
                 f,
@@ -111,7 +133,8 @@ impl std::error::Error for ExportError {}
 /// buffer (glTF 2.0 §4).
 ///
 /// # Errors
-/// [`ExportError::OutOfF32Range`], [`ExportError::InvalidLight`], [`ExportError::TooLarge`].
+/// [`ExportError::OutOfF32Range`], [`ExportError::ValueOutOfF32Range`],
+/// [`ExportError::InvalidLight`], [`ExportError::TooLarge`].
 pub fn export_glb(scene: &Scene) -> Result<Vec<u8>, ExportError> {
     let (document, mut bin) = document(scene, None)?;
     let mut json = document.to_string().into_bytes();
@@ -137,7 +160,8 @@ pub fn export_glb(scene: &Scene) -> Result<Vec<u8>, ExportError> {
 /// The scene as a `.gltf` file with its buffer embedded as a base64 `data:` URI.
 ///
 /// # Errors
-/// [`ExportError::OutOfF32Range`], [`ExportError::InvalidLight`].
+/// [`ExportError::OutOfF32Range`], [`ExportError::ValueOutOfF32Range`],
+/// [`ExportError::InvalidLight`].
 pub fn export_gltf(scene: &Scene) -> Result<String, ExportError> {
     let (document, _) = document(scene, Some(()))?;
     Ok(document.to_string())
@@ -166,13 +190,47 @@ fn rotation(right: DVec3, up: DVec3, back: DVec3) -> Value {
     Value::Array([q.x, q.y, q.z, q.w].into_iter().map(f32_value).collect())
 }
 
+/// A point as the f32 translation glTF stores, if each coordinate is within the f32 range; else
+/// [`ExportError::ValueOutOfF32Range`] naming it `what`.
+fn f32_point(point: DVec3, what: &str) -> Result<Value, ExportError> {
+    match to_f32(point)
+        .iter()
+        .zip(point.to_array())
+        .find(|(f, _)| !f.is_finite())
+    {
+        Some((_, value)) => Err(ExportError::ValueOutOfF32Range {
+            what: what.to_owned(),
+            value,
+        }),
+        None => Ok(Value::Array(point.to_array().map(f32_value).to_vec())),
+    }
+}
+
+/// A positive distance as the f32 glTF stores, if that is positive and finite; else
+/// [`ExportError::ValueOutOfF32Range`] naming it `what`.
+#[expect(
+    clippy::cast_possible_truncation,
+    reason = "glTF stores f32: the value is rounded to the nearest f32, as documented"
+)]
+fn f32_distance(value: f64, what: &str) -> Result<Value, ExportError> {
+    let stored = value as f32;
+    if stored > 0.0 && stored.is_finite() {
+        Ok(json!(stored))
+    } else {
+        Err(ExportError::ValueOutOfF32Range {
+            what: what.to_owned(),
+            value,
+        })
+    }
+}
+
 /// A node at `pose`: its eye, and its −z along the pose's forward, its +y along its up.
-fn posed_node(name: &str, pose: &ViewPose) -> Value {
-    json!({
+fn posed_node(name: &str, pose: &ViewPose) -> Result<Value, ExportError> {
+    Ok(json!({
         "name": name,
-        "translation": pose.eye().to_array().map(f32_value),
+        "translation": f32_point(pose.eye(), &format!("{name} position"))?,
         "rotation": rotation(pose.right(), pose.up(), -pose.forward()),
-    })
+    }))
 }
 
 /// The glTF JSON of `scene` and its buffer; the buffer is embedded as a data URI if `embed` is
@@ -274,7 +332,7 @@ fn document(scene: &Scene, embed: Option<()>) -> Result<(Value, Vec<u8>), Export
         }));
     }
     let camera = &scene.camera;
-    let mut camera_node = posed_node("camera", &camera.pose);
+    let mut camera_node = posed_node("camera", &camera.pose)?;
     camera_node["camera"] = json!(0);
     nodes.push(camera_node);
     let projection = &camera.projection;
@@ -282,8 +340,8 @@ fn document(scene: &Scene, embed: Option<()>) -> Result<(Value, Vec<u8>), Export
         "type": "perspective",
         "perspective": {
             "yfov": f32_value(projection.fov_y()),
-            "znear": f32_value(projection.near()),
-            "zfar": f32_value(projection.far()),
+            "znear": f32_distance(projection.near(), "camera znear")?,
+            "zfar": f32_distance(projection.far(), "camera zfar")?,
             "aspectRatio": f32_value(f64::from(camera.width) / f64::from(camera.height)),
         },
         "extras": { "shadowlab": { "image": [camera.width, camera.height] } },
@@ -308,19 +366,22 @@ fn document(scene: &Scene, embed: Option<()>) -> Result<(Value, Vec<u8>), Export
                 (node, json!({ "type": "directional" }))
             }
             SceneLight::Spot { pose, cone } => (
-                posed_node(&name, pose),
+                posed_node(&name, pose)?,
                 json!({
                     "type": "spot",
-                    "range": f32_value(cone.far()),
+                    "range": f32_distance(cone.far(), &format!("{name} range (its far distance)"))?,
                     "spot": { "innerConeAngle": 0.0, "outerConeAngle": f32_value(0.5 * cone.fov_y()) },
                 }),
             ),
             SceneLight::Point { position, range } => {
-                let node =
-                    json!({ "name": name, "translation": position.to_array().map(f32_value) });
+                // Only a translation: a point light ignores its node's rotation and scale.
+                let node = json!({
+                    "name": name,
+                    "translation": f32_point(*position, &format!("{name} position"))?,
+                });
                 let mut light = json!({ "type": "point" });
                 if let Some(range) = range {
-                    light["range"] = f32_value(*range);
+                    light["range"] = f32_distance(*range, &format!("{name} range"))?;
                 }
                 (node, light)
             }

@@ -58,7 +58,7 @@
 //!   on bad input except [`Mesh::transformed`] and [`Mesh::merged`], the documented panicking
 //!   forms of [`Mesh::try_transformed`] and
 //!   [`Mesh::try_merged`], and [`SceneLight::light`] on a hand-built zero or non-finite
-//!   `to_light`.
+//!   `to_light` or non-finite point-light `position`.
 //! - **Determinism:** no randomness and no hash-order dependence; the same input gives
 //!   bit-identical meshes.
 

@@ -552,8 +552,6 @@ pub enum GltfSkipped {
         /// The mode, e.g. `"LINE_STRIP"`.
         mode: &'static str,
     },
-    /// A point light: shadowlab's lights are directional and spot lights.
-    PointLight,
     /// A spot light whose cone is wider than a perspective shadow map can cover.
     WideSpot {
         /// `outerConeAngle`, radians.
@@ -610,9 +608,6 @@ impl fmt::Display for GltfSkipped {
             Self::PrimitiveMode { mode } => write!(
                 f,
                 "skipped: a {mode} primitive has no surface to cast or receive shadows"
-            ),
-            Self::PointLight => f.write_str(
-                "point light skipped: shadowlab's lights are directional and spot lights",
             ),
             Self::WideSpot { outer_cone_angle } => write!(
                 f,

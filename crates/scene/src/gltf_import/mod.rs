@@ -1,5 +1,5 @@
 //! glTF 2.0 import: the triangle meshes of one scene of a `.gltf` or `.glb` file in world space,
-//! its perspective cameras and its `KHR_lights_punctual` directional and spot lights
+//! its perspective cameras and its `KHR_lights_punctual` directional, point and spot lights
 //! ([`load_gltf`], [`parse_gltf`]).
 //!
 //! The JSON is parsed and checked against the schema by the `gltf` crate (`gltf::json` and its
@@ -31,16 +31,19 @@
 //!   mesh's name, else `node N`), with `/k` for primitive k of a mesh of several primitives.
 //! - **Cameras**: perspective cameras (§3.10), at their node's origin looking down its −z with
 //!   its +y up, in visiting order ([`GltfCamera`]).
-//! - **Lights**: `KHR_lights_punctual` directional lights (travelling along the node's −z) and
-//!   spot lights (at the node's origin, shining down its −z; the cone is twice
-//!   `outerConeAngle`) ([`GltfLight`]). Colour, intensity and `innerConeAngle` are not used:
-//!   shadowlab measures shadows, not shading.
+//! - **Lights**: `KHR_lights_punctual` directional lights (travelling along the node's −z),
+//!   point lights (at the node's origin in world space, its rotation and scale ignored but for
+//!   their effect on that position) and spot lights (at the node's origin, shining down its −z;
+//!   the cone is twice `outerConeAngle`) ([`GltfLight`]). A point or spot light's `range` is
+//!   read as it is: `KHR_lights_punctual` leaves light properties unaffected by node transforms
+//!   (no scaling), and an undefined range is infinite. Colour, intensity and `innerConeAngle`
+//!   are not used: shadowlab measures shadows, not shading.
 //! - **Not read**: materials, textures, images (never opened), and any buffer no drawn primitive
 //!   uses. Such parts are checked only by the schema validation.
 //!
 //! # What is skipped, with a warning
 //! Each is a [`GltfWarning`] in [`GltfImport::warnings`], naming the file and the objects:
-//! points and lines; point lights; spot lights whose cone is 180° or wider; orthographic
+//! points and lines; spot lights whose cone is 180° or wider; orthographic
 //! cameras; morph targets (the base shape is drawn); skins (the mesh is drawn as stored, placed
 //! by its node); animations (nodes are placed by their transforms as stored); meshes of nodes
 //! with a singular world transform (a zero scale: no area); zero or non-finite normals
@@ -141,6 +144,16 @@ pub enum GltfLightKind {
         /// The unit vector toward the light (hull's convention): the node's +z in world space.
         to_light: DVec3,
     },
+    /// A point light at its node's origin, lighting every direction.
+    Point {
+        /// The node's origin in world space: its world transform's translation, composed in f64
+        /// from the root down.
+        position: DVec3,
+        /// `range`, beyond which it gives no light (`KHR_lights_punctual`: "a distance cutoff at
+        /// which the light's intensity may be considered to have reached zero", > 0, unaffected
+        /// by the node's scale); `None` for unbounded.
+        range: Option<f64>,
+    },
     /// A spot light at its node's origin, shining down the node's −z.
     Spot {
         /// The pose: position, direction of travel, and the node's +y as up.
@@ -167,7 +180,7 @@ pub struct GltfImport {
     pub mesh: Mesh,
     /// The perspective cameras, in visiting order.
     pub cameras: Vec<GltfCamera>,
-    /// The directional and spot lights, in visiting order.
+    /// The directional, point and spot lights, in visiting order.
     pub lights: Vec<GltfLight>,
     /// What was skipped or replaced, in the order it was met.
     pub warnings: Vec<GltfWarning>,

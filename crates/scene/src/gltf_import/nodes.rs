@@ -273,8 +273,10 @@ fn shadowlab_image(
 }
 
 /// The `KHR_lights_punctual` light of `placed`'s node, if it has one that shadowlab represents:
-/// a directional light, or a spot light whose cone (twice `outerConeAngle`) is below 180°. Point
-/// lights and wider spots are warnings.
+/// a directional light, a point light (at the node's world position; rotation and scale are
+/// ignored but for their effect on it, and `range` is taken as it is, as `KHR_lights_punctual`
+/// says: light properties are unaffected by node transforms), or a spot light whose cone (twice
+/// `outerConeAngle`) is below 180°. Wider spots are warnings. A `range` must be > 0.
 pub(super) fn light(
     root: &json::Root,
     placed: &Placed,
@@ -329,10 +331,10 @@ pub(super) fn light(
             })?;
             GltfLightKind::Directional { to_light }
         }
-        (Checked::Valid(Type::Point), _) => {
-            warn(warnings, GltfSkipped::PointLight);
-            return Ok(None);
-        }
+        (Checked::Valid(Type::Point), _) => GltfLightKind::Point {
+            position: placed.world.translation,
+            range: range(json_light).map_err(error)?,
+        },
         (Checked::Valid(Type::Spot), Some(spot)) => {
             let outer = checked(
                 "spot.outerConeAngle",
@@ -362,11 +364,7 @@ pub(super) fn light(
                     ),
                 }));
             }
-            let range = json_light
-                .range
-                .map(|range| checked("range", range, |v| v > 0.0, || "> 0".to_owned()))
-                .transpose()
-                .map_err(error)?;
+            let range = range(json_light).map_err(error)?;
             let pose = pose_of(&placed.world).map_err(error)?;
             GltfLightKind::Spot { pose, cone, range }
         }
@@ -381,4 +379,15 @@ pub(super) fn light(
         light: light_object,
         kind,
     }))
+}
+
+/// A point or spot light's `range`, if it has one: `KHR_lights_punctual` requires it > 0 (and
+/// undefined means infinite).
+fn range(
+    light: &json::extensions::scene::khr_lights_punctual::Light,
+) -> Result<Option<f64>, GltfProblem> {
+    light
+        .range
+        .map(|range| checked("range", range, |v| v > 0.0, || "> 0".to_owned()))
+        .transpose()
 }

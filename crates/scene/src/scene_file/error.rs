@@ -94,8 +94,8 @@ pub enum SceneFileError {
         /// The glTF reader's error, naming the glTF file and its object.
         source: Box<GltfError>,
     },
-    /// The scene's glTF files hold parts that shadowlab cannot represent and would skip (a point
-    /// light, lines, a skin, …): [`crate::load_scene`] refuses them so that nothing is dropped
+    /// The scene's glTF files hold parts that shadowlab cannot represent and would skip (a spot
+    /// light of 180° or wider, lines, a skin, …): [`crate::load_scene`] refuses them so that nothing is dropped
     /// unseen; [`crate::load_scene_with_warnings`] reads the scene and returns them.
     Skipped {
         /// The scene file, or the glTF file read as a scene.

@@ -155,9 +155,10 @@ fn camera_of(
     })
 }
 
-/// A scene light of a glTF light. A spot light's far distance is its `range`, or the scene
-/// files' default (just beyond the scene's bounds); its near distance is the scene files'
-/// default for that far distance (`KHR_lights_punctual` has no near distance).
+/// A scene light of a glTF light. A point light is its position and `range` as they are. A spot
+/// light's far distance is its `range`, or the scene files' default (just beyond the scene's
+/// bounds); its near distance is the scene files' default for that far distance
+/// (`KHR_lights_punctual` has no near distance).
 fn light_of(
     light: &GltfLight,
     bounds: &crate::Bounds,
@@ -166,6 +167,10 @@ fn light_of(
     match &light.kind {
         GltfLightKind::Directional { to_light } => Ok(SceneLight::Directional {
             to_light: *to_light,
+        }),
+        GltfLightKind::Point { position, range } => Ok(SceneLight::Point {
+            position: *position,
+            range: *range,
         }),
         GltfLightKind::Spot { pose, cone, range } => {
             let objects = vec![light.node.clone(), light.light.clone()];

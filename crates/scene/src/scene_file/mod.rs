@@ -65,6 +65,8 @@
 //! |---|---|---|
 //! | `direction` | the direction the light **travels**, from the light into the scene (engine convention) | `[-1, -2, -1]` |
 //!
+//! It takes none of the other fields (`position`, `cone`, `range`, …).
+//!
 //! **Direction convention.** The file gives the direction light *travels*, as engines and most
 //! scene formats do. [`SceneLight::Directional`] holds hull's `to_light`, the unit vector from the
 //! scene *toward* the light: `to_light = −normalize(direction)`. `direction = [0, -1, 0]` is a sun
@@ -79,6 +81,16 @@
 //! | `up` | orients the light's image; must not be parallel to the direction | +y, or −z if y is the direction's largest component (ties included) |
 //! | `cone` | the full cone angle, degrees, in [0.001, 180) ([`MIN_ANGLE_DEGREES`]): the light frustum is the perspective frustum with this vertical field of view and aspect 1 | 60 |
 //! | `near`, `far` | along the direction, as the camera's | as the camera's, from the spot's position and direction |
+//!
+//! A spot's reach is its `far`: it takes no `range` (an error naming `light[i].range`).
+//!
+//! `kind = "point"`: an omnidirectional light ([`SceneLight::Point`]), which lights every
+//! direction, so it takes no `direction`, `target`, `up`, `cone`, `near` or `far` (each an
+//! error naming the field, as a `cone` on a directional light is):
+//! | field | meaning | default |
+//! |---|---|---|
+//! | `position` | the light; **required** (`light[i].position needs to be given …`) | |
+//! | `range` | the distance beyond which it lights nothing, finite and > 0: `KHR_lights_punctual`'s `range` ("a distance cutoff at which the light's intensity may be considered to have reached zero"; engines must ignore the light beyond it) | unlimited |
 //!
 //! # `[[mesh]]` (one or more)
 //! Each entry is an OBJ file, a glTF file or a procedural shape: give exactly one of `obj`,
@@ -135,7 +147,7 @@
 //! ([`SceneFileError::Read`]). TOML errors (syntax, unknown fields, wrong types, unknown shapes or
 //! light kinds, numbers out of their integer type) are [`SceneFileError::Toml`] with toml's line
 //! and column and the field there; values out of range or inconsistent are
-//! [`SceneFileError::Field`] naming the field by its path (`camera.near`, `light[0].direction`,
+//! [`SceneFileError::Field`] naming the field by its path (`camera.near`, `light[0].range`,
 //! `mesh[2].size[1]`) and the allowed range, e.g.
 //! `outdoor.toml: camera.near (5) must be below camera.far (1)`; meshes that cannot be built are
 //! [`SceneFileError::Obj`], [`SceneFileError::Gltf`], [`SceneFileError::Shape`] or
@@ -271,7 +283,8 @@ pub fn load_scene_with_warnings(path: &Path) -> Result<LoadedScene, SceneFileErr
 ///   warning, if that suffices. The image is [`DEFAULT_IMAGE`], and its width / height is the
 ///   aspect (the file's `aspectRatio`, if it differs, is a warning). Without a perspective
 ///   camera: the default camera of scene files (framing the bounds);
-/// - **lights**: the directional and spot lights; a spot's far distance is its `range`, or the
+/// - **lights**: the directional, point and spot lights; a point light's `range` is its range
+///   (unlimited without one); a spot's far distance is its `range`, or the
 ///   scene files' default, and its near distance the scene files' default for that far distance
 ///   (`KHR_lights_punctual` gives none). Without lights: the default sun of scene files;
 /// - **name**: the glTF scene's `name`, else the file's stem; **shadow** settings: none.

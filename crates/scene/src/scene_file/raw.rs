@@ -43,6 +43,7 @@ pub(super) enum LightKind {
     #[default]
     Directional,
     Spot,
+    Point,
 }
 
 /// One `[[light]]`.
@@ -57,6 +58,8 @@ pub(super) struct RawLight {
     pub(super) cone: Option<f64>,
     pub(super) near: Option<f64>,
     pub(super) far: Option<f64>,
+    /// A point light's reach (`KHR_lights_punctual`'s `range`).
+    pub(super) range: Option<f64>,
 }
 
 /// The procedural shapes a mesh entry can name.

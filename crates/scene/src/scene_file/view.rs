@@ -132,7 +132,9 @@ fn directional(
     })
 }
 
-/// The light of `[[light]]` entry `index`.
+/// The light of `[[light]]` entry `index`. A field that the entry's kind does not take is an
+/// error naming it, so that a `cone` on a directional light or a `range` on a spot is reported
+/// rather than ignored.
 pub(super) fn light(
     checker: Checker<'_>,
     index: usize,
@@ -140,29 +142,70 @@ pub(super) fn light(
     bounds: &Bounds,
 ) -> Result<SceneLight, SceneFileError> {
     let prefix = format!("light[{index}]");
-    match raw.kind.unwrap_or_default() {
+    let kind = raw.kind.unwrap_or_default();
+    let given = [
+        ("direction", raw.direction.is_some()),
+        ("position", raw.position.is_some()),
+        ("target", raw.target.is_some()),
+        ("up", raw.up.is_some()),
+        ("cone", raw.cone.is_some()),
+        ("near", raw.near.is_some()),
+        ("far", raw.far.is_some()),
+        ("range", raw.range.is_some()),
+    ];
+    let (takes, to): (&[&str], _) = match kind {
+        LightKind::Directional => (&["direction"], "a directional light"),
+        LightKind::Spot => (
+            &[
+                "direction",
+                "position",
+                "target",
+                "up",
+                "cone",
+                "near",
+                "far",
+            ],
+            "a spot light (its reach is `far`)",
+        ),
+        LightKind::Point => (&["position", "range"], "a point light"),
+    };
+    if let Some((name, _)) = given
+        .iter()
+        .find(|(name, given)| *given && !takes.contains(name))
+    {
+        return Err(checker.error(
+            field(&prefix, name),
+            SceneFileProblem::NotApplicable { to: to.to_owned() },
+        ));
+    }
+    match kind {
         LightKind::Directional => {
-            let spot_only = [
-                ("position", raw.position.is_some()),
-                ("target", raw.target.is_some()),
-                ("up", raw.up.is_some()),
-                ("cone", raw.cone.is_some()),
-                ("near", raw.near.is_some()),
-                ("far", raw.far.is_some()),
-            ];
-            if let Some((name, _)) = spot_only.iter().find(|(_, given)| *given) {
-                return Err(checker.error(
-                    field(&prefix, name),
-                    SceneFileProblem::NotApplicable {
-                        to: "a directional light".to_owned(),
-                    },
-                ));
-            }
             let direction = raw.direction.unwrap_or(DEFAULT_SUN_DIRECTION.to_array());
             directional(checker, &prefix, direction)
         }
         LightKind::Spot => spot(checker, &prefix, raw, bounds),
+        LightKind::Point => point(checker, &prefix, raw),
     }
+}
+
+/// A point light (`kind = "point"`): its `position`, required, and its `range`, if given, finite
+/// and > 0 (`KHR_lights_punctual`'s `range`: the distance beyond which it lights nothing).
+fn point(checker: Checker<'_>, prefix: &str, raw: &RawLight) -> Result<SceneLight, SceneFileError> {
+    let position_field = field(prefix, "position");
+    let Some(position) = raw.position else {
+        return Err(checker.error(
+            position_field,
+            SceneFileProblem::Missing {
+                needs: "to be given for a point light, which has no default position",
+            },
+        ));
+    };
+    let position = checker.vector(&position_field, position)?;
+    let range = raw
+        .range
+        .map(|range| checker.positive(&field(prefix, "range"), range))
+        .transpose()?;
+    Ok(SceneLight::Point { position, range })
 }
 
 /// A spot light (`kind = "spot"`).

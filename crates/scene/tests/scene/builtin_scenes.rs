@@ -1,6 +1,7 @@
 //! The built-in scenes: the embedded files are those of data/scenes and load identically from
 //! disk; each has the documented camera, and its light and content where data/scenes/README.md
-//! says.
+//! says (the point-light scenes: a closed room around its light, and chess-spot's board under a
+//! point light above the pieces).
 
 use glam::{DMat4, DVec3};
 use shadowlab_hull::{NdcDepth, light_view_angle};
@@ -257,4 +258,162 @@ fn bunny_is_lit_from_above_at_an_angle() {
     }
     let ground = group_bounds(&scene, "ground");
     assert!((bunny.min.y - ground.max.y).abs() < 0.01);
+}
+
+/// The distance along `direction` (unit) from `origin` to the nearest triangle of the groups
+/// named in `groups` (Möller–Trumbore, both faces), if any is hit.
+fn ray_hit(scene: &Scene, groups: &[&str], origin: DVec3, direction: DVec3) -> Option<f64> {
+    let names = scene.mesh.group_names();
+    let mut nearest: Option<f64> = None;
+    for t in 0..scene.mesh.triangle_count() {
+        if !groups.contains(&names[scene.mesh.groups()[t] as usize].as_str()) {
+            continue;
+        }
+        let [a, b, c] = scene.mesh.triangle_positions(t);
+        let (e1, e2) = (b - a, c - a);
+        let p = direction.cross(e2);
+        let det = e1.dot(p);
+        if det.abs() < 1e-12 {
+            continue;
+        }
+        let s = origin - a;
+        let u = s.dot(p) / det;
+        let q = s.cross(e1);
+        let v = direction.dot(q) / det;
+        let distance = e2.dot(q) / det;
+        if (-1e-9..=1.0 + 1e-9).contains(&u) && v >= -1e-9 && u + v <= 1.0 + 1e-9 && distance > 0.0
+        {
+            nearest = Some(nearest.map_or(distance, |n: f64| n.min(distance)));
+        }
+    }
+    nearest
+}
+
+/// `count` unit vectors spread evenly over the sphere (a Fibonacci lattice).
+fn sphere_directions(count: u32) -> impl Iterator<Item = DVec3> {
+    let golden = std::f64::consts::PI * (3.0 - 5_f64.sqrt());
+    (0..count).map(move |k| {
+        let y = 1.0 - 2.0 * (f64::from(k) + 0.5) / f64::from(count);
+        let r = (1.0 - y * y).sqrt();
+        let phi = golden * f64::from(k);
+        DVec3::new(r * phi.cos(), y, r * phi.sin())
+    })
+}
+
+/// The shell of room-point: the groups that close the room.
+const ROOM_SHELL: [&str; 4] = ["floor", "ceiling", "side-walls", "end-walls"];
+
+#[test]
+fn room_point_is_a_closed_room_lit_by_a_point_light_among_its_furniture() {
+    let scene = scene("room-point");
+    assert_camera(&scene, 60.0, 0.5, 12.0);
+    let [SceneLight::Point { position, range }] = scene.lights[..] else {
+        panic!("one point light: {:?}", scene.lights);
+    };
+    assert_eq!(position, DVec3::new(0.0, 2.5, -0.5));
+    assert_eq!(range, Some(8.0));
+    assert_eq!(scene.lights[0].light().position(), Some(position));
+    // The camera and the light are inside the room (inner faces at x = ±4, y = 0 and 3,
+    // z = ±5), the light 0.5 below the ceiling and near the middle.
+    let inside = |p: DVec3| p.x.abs() < 4.0 && p.y > 0.0 && p.y < 3.0 && p.z.abs() < 5.0;
+    assert!(inside(scene.camera.pose.eye()) && inside(position));
+    assert!(position.x.abs() <= 1.0 && position.z.abs() <= 1.0);
+    // Closed: every ray from the light meets the shell, within the light's range, so nothing
+    // leaks out and the range lights every wall.
+    let mut farthest: f64 = 0.0;
+    for direction in sphere_directions(2000) {
+        let hit = ray_hit(&scene, &ROOM_SHELL, position, direction)
+            .unwrap_or_else(|| panic!("a ray from the light along {direction} leaves the room"));
+        farthest = farthest.max(hit);
+    }
+    assert!(
+        (6.5..8.0).contains(&farthest),
+        "the farthest wall point hit {farthest}"
+    );
+    // The farthest points of the room, the lower corners of the near wall, are √52.5 ≈ 7.2
+    // away: in range.
+    let corner_distance = |k: i32| {
+        let sign = |bit: i32| if k & bit == 0 { -1.0 } else { 1.0 };
+        let corner = DVec3::new(4.0 * sign(1), 1.5 + 1.5 * sign(2), 5.0 * sign(4));
+        (corner - position).length()
+    };
+    let farthest_corner = (0..8).map(corner_distance).fold(0.0, f64::max);
+    assert_eq!(farthest_corner, 52.5_f64.sqrt());
+    // Every piece of furniture is below the light; the cord hangs above it, not touching it.
+    let names = scene.mesh.group_names();
+    let furniture: Vec<&str> = names
+        .iter()
+        .map(String::as_str)
+        .filter(|name| !ROOM_SHELL.contains(name) && *name != "pendant-cord")
+        .collect();
+    assert!(furniture.len() >= 10, "{furniture:?}");
+    for name in &furniture {
+        let bounds = group_bounds(&scene, name);
+        assert!(
+            bounds.max.y < position.y - 0.4,
+            "{name} reaches {}",
+            bounds.max.y
+        );
+        // Standing on the floor is inside.
+        let above_floor = bounds.min + DVec3::new(0.0, 1e-9, 0.0);
+        assert!(
+            inside(above_floor) && inside(bounds.max),
+            "{name} is not inside the room"
+        );
+    }
+    let cord = group_bounds(&scene, "pendant-cord");
+    assert!(cord.min.y > position.y && cord.min.y - position.y < 0.1);
+    assert!(
+        (cord.max.y - 3.0).abs() < 1e-12,
+        "the cord hangs from the ceiling"
+    );
+    // Shadows fall in all directions: furniture stands in each quadrant around the light.
+    let mut quadrants = [false; 4];
+    for name in &furniture {
+        let centre = group_bounds(&scene, name).centre() - position;
+        quadrants[usize::from(centre.x > 0.0) + 2 * usize::from(centre.z > 0.0)] = true;
+    }
+    assert_eq!(quadrants, [true; 4]);
+    // Thin objects: a pole, legs and slats at most 0.05 across.
+    for (name, across) in [
+        ("lamp-pole", 0.024),
+        ("chair-legs-front", 0.035),
+        ("screen-slats", 0.02),
+        ("table-legs-back", 0.05),
+    ] {
+        let size = group_bounds(&scene, name).size();
+        assert!(size.x.min(size.z) <= across + 1e-12, "{name}: {size}");
+    }
+    // Modest: a few thousand triangles.
+    assert!(
+        scene.mesh.triangle_count() < 2000,
+        "{}",
+        scene.mesh.triangle_count()
+    );
+}
+
+#[test]
+fn chess_point_is_chess_spot_under_a_point_light_above_the_pieces() {
+    let point = scene("chess-point");
+    let spot = scene("chess-spot");
+    assert_eq!(point.camera, spot.camera);
+    assert_eq!(point.mesh, spot.mesh);
+    let [SceneLight::Point { position, range }] = point.lights[..] else {
+        panic!("one point light: {:?}", point.lights);
+    };
+    assert_eq!((position, range), (DVec3::new(2.5, 3.5, 1.5), None));
+    // Above the tallest piece by 2, over the board but off its centre.
+    let tallest = point
+        .mesh
+        .group_names()
+        .iter()
+        .filter(|name| *name != "board" && *name != "table")
+        .map(|name| group_bounds(&point, name).max.y)
+        .fold(f64::NEG_INFINITY, f64::max);
+    assert!((tallest - 1.5).abs() < 1e-12, "{tallest}");
+    assert!(position.y - tallest >= 2.0);
+    assert!(position.x.abs() < 4.0 && position.z.abs() < 4.0);
+    assert!(position.x.hypot(position.z) > 2.5);
+    // In front of the camera, inside its view.
+    assert!(in_view(&clip_from_world(&point), position));
 }

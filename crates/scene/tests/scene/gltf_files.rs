@@ -9,8 +9,8 @@ use glam::{DVec3, dvec3};
 use serde_json::{Value, json};
 use shadowlab_scene::scene_file::{DEFAULT_IMAGE, DEFAULT_SUN_DIRECTION};
 use shadowlab_scene::{
-    GltfError, GltfLightKind, GltfSkipped, SceneFileError, SceneLight, load_gltf, load_gltf_scene,
-    load_scene, load_scene_with_warnings,
+    GltfError, GltfLightKind, GltfProblem, GltfSkipped, SceneFileError, SceneLight, load_gltf,
+    load_gltf_scene, load_scene, load_scene_with_warnings,
 };
 
 use crate::support::ObjDir;
@@ -346,7 +346,8 @@ fn the_scene_is_the_one_asked_for_else_the_default_else_the_first() {
     );
 }
 
-/// A file of a 10 × 10 ground at y = 0 with a perspective camera, a sun, a spot and a point light.
+/// A file of a 10 × 10 ground at y = 0 with a perspective camera, a sun, a spot and a point light
+/// (range 7.5) whose node hangs from a translated, turned and scaled parent.
 fn lit_file(camera: Value) -> Value {
     let mut builder = Builder::default();
     let positions = builder.vec3(&[
@@ -362,16 +363,18 @@ fn lit_file(camera: Value) -> Value {
         "extensions": { "KHR_lights_punctual": { "lights": [
             { "type": "directional", "name": "sun" },
             { "type": "spot", "name": "lamp", "range": 20.0, "spot": { "outerConeAngle": 0.5 } },
-            { "type": "point", "name": "bulb" }
+            { "type": "point", "name": "bulb", "range": 7.5 }
         ] } },
-        "scenes": [{ "nodes": [0, 1, 2, 3, 4], "name": "lit" }],
+        "scenes": [{ "nodes": [0, 1, 2, 3, 5], "name": "lit" }],
         "nodes": [
             { "name": "ground", "mesh": 0 },
             { "name": "eye", "camera": 0, "translation": [0.0, 2.0, 10.0] },
             // −90° about x: the node's −z points down, its +z (toward the light) along +y.
             { "name": "sun", "rotation": [-half, 0.0, 0.0, half], "extensions": { "KHR_lights_punctual": { "light": 0 } } },
             { "name": "lamp", "translation": [0.0, 8.0, 0.0], "rotation": [-half, 0.0, 0.0, half], "extensions": { "KHR_lights_punctual": { "light": 1 } } },
-            { "name": "bulb", "extensions": { "KHR_lights_punctual": { "light": 2 } } }
+            { "name": "bulb", "translation": [0.1, 1.0, 0.0], "extensions": { "KHR_lights_punctual": { "light": 2 } } },
+            // 180° about y and scaled by 2: the bulb's (0.1, 1, 0) becomes (−0.2, 2, 0).
+            { "name": "fixture", "translation": [0.5, 3.0, -1.0], "rotation": [0.0, 1.0, 0.0, 0.0], "scale": [2.0, 2.0, 2.0], "children": [4] }
         ],
         "cameras": [camera],
         "meshes": [{ "primitives": [{ "attributes": { "POSITION": positions }, "indices": indices }] }],
@@ -387,7 +390,7 @@ fn cameras_and_lights_are_placed_by_their_nodes() {
     let camera = &import.cameras[0];
     assert_eq!(camera.pose.eye(), dvec3(0.0, 2.0, 10.0));
     assert_eq!(camera.pose.forward(), DVec3::NEG_Z);
-    assert_eq!(import.lights.len(), 2);
+    assert_eq!(import.lights.len(), 3);
     match &import.lights[0].kind {
         GltfLightKind::Directional { to_light } => assert!((*to_light - DVec3::Y).length() < 1e-7),
         other => panic!("{other:?}"),
@@ -400,16 +403,24 @@ fn cameras_and_lights_are_placed_by_their_nodes() {
         }
         other => panic!("{other:?}"),
     }
-    assert_eq!(import.warnings.len(), 1);
-    assert_eq!(import.warnings[0].skipped, GltfSkipped::PointLight);
-    assert!(
-        import.warnings[0]
-            .to_string()
-            .contains("lit.gltf: node 4 'bulb': light 2 'bulb': point light skipped")
+    // The point light is at its node's world origin, composed in f64 through the parent's
+    // translation, rotation and scale: (0.5, 3, −1) + (−2·0.1, 2·1, 0), 0.1 the f32 nearest. Its
+    // range is the file's, unscaled (KHR_lights_punctual: light properties are unaffected by node
+    // transforms).
+    let bulb = dvec3(0.5 - 2.0 * f64::from(0.1_f32), 5.0, -1.0);
+    assert_eq!(
+        import.lights[2].kind,
+        GltfLightKind::Point {
+            position: bulb,
+            range: Some(7.5)
+        }
     );
+    assert_eq!(import.lights[2].node.to_string(), "node 4 'bulb'");
+    assert_eq!(import.lights[2].light.to_string(), "light 2 'bulb'");
+    assert_eq!(import.warnings, []);
 
-    // As a scene: the file's camera with the default image, its two lights; the point light and
-    // the differing aspect ratio are warnings, and load_scene refuses them.
+    // As a scene: the file's camera with the default image, its three lights; the differing
+    // aspect ratio is a warning, and load_scene refuses it.
     let loaded = load_gltf_scene(&path, None).expect("a scene");
     let scene = &loaded.scene;
     assert_eq!(scene.name, "lit");
@@ -425,17 +436,21 @@ fn cameras_and_lights_are_placed_by_their_nodes() {
         }
         other => panic!("{other:?}"),
     }
+    assert_eq!(
+        scene.lights[2],
+        SceneLight::Point {
+            position: bulb,
+            range: Some(7.5)
+        }
+    );
     let kinds: Vec<_> = loaded.warnings.iter().map(|w| w.skipped.clone()).collect();
     assert_eq!(
         kinds,
-        [
-            GltfSkipped::PointLight,
-            GltfSkipped::AspectRatio {
-                file: 1.5,
-                width: 1024,
-                height: 768
-            }
-        ]
+        [GltfSkipped::AspectRatio {
+            file: 1.5,
+            width: 1024,
+            height: 768
+        }]
     );
     assert_eq!(load_scene_with_warnings(&path).expect("the same"), loaded);
     match load_scene(&path) {
@@ -443,11 +458,57 @@ fn cameras_and_lights_are_placed_by_their_nodes() {
             let text = error.to_string();
             assert!(
                 text.contains("lit.gltf: holds what shadowlab cannot represent and would skip")
-                    && text.contains("point light skipped"),
+                    && text.contains("aspectRatio 1.5 not used")
+                    && !text.contains("point light"),
                 "{text}"
             );
         }
         other => panic!("{other:?}"),
+    }
+}
+
+#[test]
+fn a_point_light_s_range_is_optional_and_must_be_positive() {
+    let camera = json!({ "type": "perspective", "perspective": { "yfov": 0.8, "znear": 0.5, "zfar": 50.0 } });
+    let dir = ObjDir::new();
+    // Without a range: unlimited (KHR_lights_punctual: an undefined range is infinite).
+    let mut document = lit_file(camera.clone());
+    document["extensions"]["KHR_lights_punctual"]["lights"][2]
+        .as_object_mut()
+        .expect("a light")
+        .remove("range");
+    let scene = load_gltf_scene(&write(&dir, "unlimited.gltf", &document), None)
+        .expect("a scene")
+        .scene;
+    assert!(
+        matches!(scene.lights[2], SceneLight::Point { range: None, position } if position.y == 5.0),
+        "{:?}",
+        scene.lights[2]
+    );
+    // A range must be > 0: an error naming the node, the light and the property.
+    for range in [json!(0.0), json!(-3)] {
+        let mut document = lit_file(camera.clone());
+        document["extensions"]["KHR_lights_punctual"]["lights"][2]["range"] = range.clone();
+        let error = load_gltf(&write(&dir, "bad.gltf", &document), None).expect_err("a bad range");
+        let text = error.to_string();
+        assert!(
+            text.contains("bad.gltf: node 4 'bulb': light 2 'bulb': `range` (")
+                && text.contains(") must be > 0"),
+            "{range}: {text}"
+        );
+        assert!(
+            matches!(
+                &error,
+                GltfError::Object {
+                    problem: GltfProblem::OutOfRange {
+                        property: "range",
+                        ..
+                    },
+                    ..
+                }
+            ),
+            "{error:?}"
+        );
     }
 }
 
@@ -575,14 +636,7 @@ fn a_camera_s_shadowlab_extras_set_its_image() {
     let camera = &loaded.scene.camera;
     assert_eq!((camera.width, camera.height), (96, 64));
     assert_eq!(camera.projection.aspect(), 1.5);
-    assert_eq!(
-        loaded
-            .warnings
-            .iter()
-            .map(|w| w.skipped.clone())
-            .collect::<Vec<_>>(),
-        [GltfSkipped::PointLight]
-    );
+    assert_eq!(loaded.warnings, []);
 
     let path = write(
         &dir,

@@ -161,7 +161,7 @@ fn unknown_shapes_and_light_kinds() {
     let (_, field, message) = toml_error(&format!("{BOX}[[light]]\nkind = \"area\"\n"));
     assert_eq!(field.as_deref(), Some("light[0].kind"));
     assert!(
-        message.contains("area") && message.contains("spot"),
+        message.contains("area") && message.contains("spot") && message.contains("point"),
         "{message}"
     );
 }
@@ -214,6 +214,18 @@ fn nan_and_infinity_are_named() {
             "light[0].direction[0]",
         ),
         ("[[light]]\nkind = \"spot\"\ncone = nan\n", "light[0].cone"),
+        (
+            "[[light]]\nkind = \"point\"\nposition = [0, 0, -inf]\n",
+            "light[0].position[2]",
+        ),
+        (
+            "[[light]]\nkind = \"point\"\nposition = [0, 3, 0]\nrange = nan\n",
+            "light[0].range",
+        ),
+        (
+            "[[light]]\n[[light]]\nkind = \"point\"\nposition = [0, 3, 0]\nrange = inf\n",
+            "light[1].range",
+        ),
     ];
     for (text, expected) in cases {
         let (field, problem) = field_error(&format!("{BOX}{text}"));
@@ -612,12 +624,84 @@ fn fields_that_do_not_apply() {
         );
     }
     assert_eq!(
+        field_message(&format!("{BOX}[[light]]\nrange = 5\n")),
+        "light[0].range does not apply to a directional light"
+    );
+    // A spot's reach is its far distance.
+    assert_eq!(
+        field_message(&format!("{BOX}[[light]]\nkind = \"spot\"\nrange = 5\n")),
+        "light[0].range does not apply to a spot light (its reach is `far`)"
+    );
+    // A point light lights every direction: none of a directional or spot light's aim or frustum.
+    for field in [
+        "direction = [0, -1, 0]",
+        "target = [0, 0, 0]",
+        "up = [0, 1, 0]",
+        "cone = 30",
+        "near = 1",
+        "far = 2",
+    ] {
+        let name = field.split(' ').next().unwrap();
+        let (field, problem) = field_error(&format!(
+            "{BOX}[[light]]\n[[light]]\nkind = \"point\"\nposition = [0, 3, 0]\n{field}\n"
+        ));
+        assert_eq!(field, format!("light[1].{name}"));
+        assert_eq!(
+            problem,
+            SceneFileProblem::NotApplicable {
+                to: "a point light".to_owned()
+            }
+        );
+        assert_eq!(problem.to_string(), "does not apply to a point light");
+    }
+    assert_eq!(
         field_message("[[mesh]]\nshape = \"box\"\nstep = [1, 0, 0]\n"),
         "mesh[0].step does not apply to a single copy (set `copies`)"
     );
     assert_eq!(
         field_message("[[mesh]]\nshape = \"box\"\ncopies = 2\n"),
         "mesh[0].copies needs a `step` between the copies"
+    );
+}
+
+#[test]
+fn a_point_light_needs_a_position_and_a_positive_range() {
+    let (field, problem) = field_error(&format!("{BOX}[[light]]\nkind = \"point\"\nrange = 4\n"));
+    assert_eq!(field, "light[0].position");
+    assert!(
+        matches!(problem, SceneFileProblem::Missing { .. }),
+        "{problem:?}"
+    );
+    assert_eq!(
+        field_message(&format!("{BOX}[[light]]\nkind = \"point\"\n")),
+        "light[0].position needs to be given for a point light, which has no default position"
+    );
+    for (range, shown) in [("0", "0"), ("-0.0", "-0"), ("-2.5", "-2.5")] {
+        let text =
+            format!("{BOX}[[light]]\nkind = \"point\"\nposition = [0, 3, 0]\nrange = {range}\n");
+        let (field, problem) = field_error(&text);
+        assert_eq!(field, "light[0].range", "{range}");
+        assert!(
+            matches!(&problem, SceneFileProblem::OutOfRange { requirement, .. } if requirement == "> 0"),
+            "{range}: {problem:?}"
+        );
+        assert_eq!(
+            field_message(&text),
+            format!("light[0].range ({shown}) must be > 0")
+        );
+    }
+    // The smallest positive range is one.
+    let scene = shadowlab_scene::parse_scene(
+        &format!("{BOX}[[light]]\nkind = \"point\"\nposition = [0, 3, 0]\nrange = 5e-324\n"),
+        std::path::Path::new("tiny.toml"),
+    )
+    .expect("a positive range");
+    assert_eq!(
+        scene.lights,
+        [shadowlab_scene::SceneLight::Point {
+            position: DVec3::new(0.0, 3.0, 0.0),
+            range: Some(5e-324)
+        }]
     );
 }
 
@@ -730,7 +814,7 @@ fn unreadable_files_and_unknown_built_ins() {
     assert_eq!(
         error.to_string(),
         "there is no built-in scene `indoor`; the built-in scenes are outdoor, dueling-frusta, \
-         cad-lattice, chess-spot, bunny"
+         cad-lattice, chess-spot, bunny, room-point, chess-point"
     );
 }
 

@@ -222,6 +222,45 @@ fn a_spot_light_as_written() {
     assert!(pose.up().y > 0.99);
 }
 
+#[test]
+fn a_point_light_as_written_with_and_without_range() {
+    let scene = load(&format!(
+        "{BOX}[[light]]\nkind = \"point\"\nposition = [0.5, 2.5, -1]\nrange = 7.25\n\
+         [[light]]\nkind = \"point\"\nposition = [-3, 1e3, 0]\n"
+    ));
+    assert_eq!(
+        scene.lights,
+        [
+            SceneLight::Point {
+                position: DVec3::new(0.5, 2.5, -1.0),
+                range: Some(7.25),
+            },
+            SceneLight::Point {
+                position: DVec3::new(-3.0, 1000.0, 0.0),
+                range: None,
+            },
+        ]
+    );
+    // hull's light: a point light there, with no direction and no frustum (it lights all space).
+    let light = scene.lights[0].light();
+    assert_eq!(light.position(), Some(DVec3::new(0.5, 2.5, -1.0)));
+    assert_eq!(light.to_light(), None);
+    assert!(light.frustum().is_none());
+    // Next to other kinds, in file order.
+    let mixed = load(&format!(
+        "{BOX}[[light]]\nkind = \"spot\"\n[[light]]\nkind = \"point\"\nposition = [0, 9, 0]\n\
+         [[light]]\n"
+    ));
+    assert!(matches!(
+        mixed.lights[..],
+        [
+            SceneLight::Spot { .. },
+            SceneLight::Point { range: None, .. },
+            SceneLight::Directional { .. }
+        ]
+    ));
+}
+
 /// One triangle with a corner at (1, 2, 3) and one at the origin.
 const TRIANGLE_OBJ: &str = "v 1 2 3\nv 0 0 0\nv 1 0 0\nf 1 2 3\n";
 
