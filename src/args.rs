@@ -125,7 +125,8 @@ fn depth_format(text: &str) -> Result<DepthFormat, String> {
 /// The scene of every command that takes one.
 #[derive(Debug, Args)]
 pub(crate) struct SceneArg {
-    /// A built-in scene (outdoor, dueling-frusta, cad-lattice, chess-spot, bunny), a scene file
+    /// A built-in scene (outdoor, dueling-frusta, cad-lattice, chess-spot, bunny, room-point,
+    /// chess-point), a scene file
     /// (.toml) or a glTF 2.0 file (.gltf, .glb: its camera and lights, defaults otherwise).
     /// Default: outdoor.
     #[arg(value_name = "SCENE")]

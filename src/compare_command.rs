@@ -2,9 +2,7 @@
 
 use anyhow::Context;
 use shadowlab_raster::{DepthFormat, NO_TRIANGLE};
-use shadowlab_shadow::{
-    Bias, Filter, FrameOptions, Lookup, PlanOptions, ShadowError, render_frame, view,
-};
+use shadowlab_shadow::{Bias, Filter, FrameOptions, Lookup, PlanOptions, render_frame, view};
 use tiny_skia::{Color, Pixmap, PixmapPaint, Transform};
 
 use crate::args::{COMPARE_TECHNIQUES, CompareArgs};
@@ -122,8 +120,8 @@ pub(crate) fn run(args: &CompareArgs) -> Result<(), CliError> {
                 ))?;
                 format!("{technique}")
             }
-            Err(ShadowError::NotDefined { .. }) => {
-                print_line(&format!("{technique}: not defined for this scene"))?;
+            Err(e) if e.undefined_reason().is_some() => {
+                print_line(&format!("{technique}: not defined for this scene ({e})"))?;
                 format!("{technique}: not defined here")
             }
             Err(e) => {

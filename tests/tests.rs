@@ -5,6 +5,8 @@
 //! * `render_mesh_cli` — `shadowlab render-mesh`: both passes as PNG and EXR, repeatable, bad meshes.
 //! * `analyze_cli` — `shadowlab analyze`, `sweep-angle`, `temporal`: the reports, repeatable results,
 //!   continuity at γ = 0, bad input.
+//! * `point_light_cli` — point lights: the cube map by default, the omnidirectional techniques
+//!   analyzed, techniques that cannot serve a light refused with exit 2 before anything is written.
 //! * `render_cli` — `shadowlab render` and `inspect`: the pictures, repeatable, partitions, JSON,
 //!   bad scenes and settings.
 //! * `export_cli` — `--export`: per-pixel results that agree with the report and across commands.
@@ -22,6 +24,7 @@ mod export_cli;
 mod hostile_cli;
 mod output_cli;
 mod params_cli;
+mod point_light_cli;
 mod render_cli;
 mod render_mesh_cli;
 mod support;

@@ -579,8 +579,10 @@ pub fn run_observed<E: From<AnalysisError>>(
                 time_from_runs(&mut measured, &runs);
                 Ok(measured)
             }
-            Err(ShadowError::NotDefined { reason, .. }) => Err(reason),
-            Err(e) => return Err(AnalysisError::from(e).into()),
+            Err(e) => match e.undefined_reason() {
+                Some(reason) => Err(reason),
+                None => return Err(AnalysisError::from(e).into()),
+            },
         };
         measurements.push(Measurement {
             setting: setting.clone(),

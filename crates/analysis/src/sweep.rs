@@ -140,8 +140,10 @@ pub fn sweep(
                     )?;
                     Ok((o.errors, o.footprint[0].p99))
                 }
-                Err(shadowlab_shadow::ShadowError::NotDefined { reason, .. }) => Err(reason),
-                Err(e) => return Err(e.into()),
+                Err(e) => match e.undefined_reason() {
+                    Some(reason) => Err(reason),
+                    None => return Err(e.into()),
+                },
             };
             points.push(SweepPoint {
                 gamma: *gamma,

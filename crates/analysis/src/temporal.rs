@@ -14,8 +14,8 @@ use shadowlab_hull::ViewPose;
 use shadowlab_raster::NO_TRIANGLE;
 use shadowlab_scene::Scene;
 use shadowlab_shadow::{
-    Bias, Filter, FrameOptions, LightShadow, Lookup, PlanOptions, ShadowError, Technique, eye_pass,
-    lit_at, render_shadows, scene_eye,
+    Bias, Filter, FrameOptions, LightShadow, Lookup, PlanOptions, Technique, eye_pass, lit_at,
+    render_shadows, scene_eye,
 };
 use shadowlab_trace::Bvh;
 
@@ -147,8 +147,10 @@ pub fn temporal(
                     );
                     previous[v] = Some(shadows.lights.swap_remove(0));
                 }
-                Err(ShadowError::NotDefined { reason, .. }) => *state = Err(reason),
-                Err(e) => return Err(e.into()),
+                Err(e) => match e.undefined_reason() {
+                    Some(reason) => *state = Err(reason),
+                    None => return Err(e.into()),
+                },
             }
         }
         progress(k + 1, frames);

@@ -103,7 +103,7 @@ pub fn curves(scene: &Scene, techniques: &[Technique]) -> Result<Vec<AxisCurve>,
         }
         let planned = |input: &PlanInput| match plan(input, technique) {
             Ok(setup) => Ok(Some(setup)),
-            Err(ShadowError::NotDefined { .. } | ShadowError::LightInsideFocusBody) => Ok(None),
+            Err(e) if e.undefined_reason().is_some() => Ok(None),
             Err(e) => Err(AnalysisError::from(e)),
         };
         let (view_setup, scene_setup) = (planned(&view_input)?, planned(&scene_input)?);

@@ -85,6 +85,22 @@ impl fmt::Display for ShadowError {
     }
 }
 
+impl ShadowError {
+    /// Why the technique has no map for this configuration, where that is the error — the
+    /// technique not defined here ([`Self::NotDefined`]: its reason), or the light inside the body
+    /// its one map must cover ([`Self::LightInsideFocusBody`], PSM for a point light in the view's
+    /// hull) — so that a study records it as that setting's outcome instead of stopping; `None`
+    /// for every other error.
+    #[must_use]
+    pub fn undefined_reason(&self) -> Option<String> {
+        match self {
+            Self::NotDefined { reason, .. } => Some(reason.clone()),
+            Self::LightInsideFocusBody => Some(self.to_string()),
+            _ => None,
+        }
+    }
+}
+
 impl std::error::Error for ShadowError {
     fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
         match self {

@@ -14,9 +14,11 @@
 //! through the inverse mapping ([`crate::ShadowMap::cast`]), like the logarithmic map, so what is
 //! measured is the parameterisation's own aliasing, not the tessellation's.
 //!
-//! shadowlab's choices, named: the front hemisphere looks from the light toward the centroid of
-//! the focus body B (`−y` if that is the light itself) — Brabec et al. orient it with the light's
-//! own frame, which a point light of a scene does not have; each hemisphere's near distance is the
+//! The hemispheres are fixed to the light's frame, as Brabec et al. orient them; a point light of
+//! a scene has no frame of its own, so shadowlab gives it the world's: the front hemisphere looks
+//! down (`−y`, toward the floor a ceiling light hangs over), the back one up — fixed, so the maps'
+//! texel grids do not move as the camera does (a camera-dependent axis would make every frame's
+//! grid a new one: shimmer). shadowlab's focusing, named: each hemisphere's near distance is the
 //! nearest geometry of its part of B and its far distance the furthest vertex of that part (no
 //! further than the light's range).
 
@@ -30,6 +32,9 @@ use crate::input::{LightSource, PlanInput};
 use crate::omni::{LightFace, nearest};
 use crate::setup::{LightSetup, ShadowMapping};
 use crate::technique::Technique;
+
+/// The front hemisphere's axis: down, the world's −y (module docs).
+pub const FRONT: DVec3 = DVec3::NEG_Y;
 
 /// One hemisphere's paraboloid map: the light, the hemisphere's frame and its depth range.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -175,11 +180,8 @@ pub(crate) fn plan(
     let e = input.eye.pose.eye();
     let gamma =
         shadowlab_hull::light_view_angle(input.eye.pose.forward(), input.light.toward_from(e))?;
-    let front = (body.centroid() - position)
-        .try_normalize()
-        .unwrap_or(DVec3::NEG_Y);
     let mut hemispheres = Vec::new();
-    for (name, axis) in [("front", front), ("back", -front)] {
+    for (name, axis) in [("front", FRONT), ("back", -FRONT)] {
         let face = LightFace {
             name,
             light: position,

@@ -9,14 +9,20 @@
 use glam::{DMat4, DVec3, DVec4};
 
 use crate::setup::{LightSetup, ProjectiveMapping, ShadowMapping};
+use crate::technique::Technique;
 
 /// `setup` with its window snapped to the `texels`-texel grid of a `resolution`-texel map. The
-/// logarithmic map, which is not projective, is returned unchanged.
+/// maps that are not projective (logarithmic, paraboloid) are returned unchanged, and so is a cube
+/// face: its grid is fixed to the light and the world's axes already, and a shifted face would no
+/// longer meet its neighbours edge to edge.
 #[must_use]
 pub fn snap_to_texels(setup: &LightSetup, resolution: u32, texels: u32) -> LightSetup {
     let ShadowMapping::Projective(mapping) = setup.mapping else {
         return setup.clone();
     };
+    if setup.technique == Technique::Cube {
+        return setup.clone();
+    }
     let clip = mapping.clip_from_world() * DVec3::ZERO.extend(1.0);
     if clip.w <= 0.0 || texels == 0 {
         return setup.clone();

@@ -433,6 +433,11 @@ fn every_preset_and_sdsm_variant_renders_every_builtin_scene() {
         .collect();
     for name in BUILTIN_SCENES {
         let mut scene = builtin_scene(name).unwrap();
+        if has_point_light(&scene) {
+            // Cascades need a light direction: a point light is served by cube, dual-paraboloid
+            // and psm alone (the omni tests).
+            continue;
+        }
         scene.camera.width = 96;
         scene.camera.height = 64;
         for &technique in &techniques {
@@ -490,4 +495,12 @@ fn presets_read_their_maps_with_their_engines_bias() {
     let (width, _) = window_size(&unity[0].setup);
     let bias = Engine::Unity.bias(&unity[0], RESOLUTION);
     assert!((bias.toward_light.unwrap() - width / f64::from(RESOLUTION)).abs() < 1e-12);
+}
+
+/// Whether `scene` has a point light.
+fn has_point_light(scene: &shadowlab_scene::Scene) -> bool {
+    scene
+        .lights
+        .iter()
+        .any(|light| matches!(light, shadowlab_scene::SceneLight::Point { .. }))
 }

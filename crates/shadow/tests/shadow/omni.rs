@@ -305,3 +305,27 @@ fn psm_serves_a_point_light_in_front_of_and_behind_the_viewer() {
         assert!(seen > 1000);
     }
 }
+
+/// Claim: texel snapping leaves a cube face as it is (its grid is fixed to the light and the
+/// world's axes; a shifted face would leave gaps between faces) and a paraboloid hemisphere too.
+#[test]
+fn snapping_leaves_the_omnidirectional_maps_alone() {
+    let scene = &scenes()[1];
+    for technique in [Technique::Cube, Technique::DualParaboloid] {
+        let partitions = plan_light(
+            scene,
+            &scene.lights[0],
+            &PlanOptions::new(technique),
+            None,
+            512,
+            None,
+        )
+        .unwrap();
+        for partition in &partitions {
+            assert_eq!(
+                shadowlab_shadow::snap_to_texels(&partition.setup, 512, 1),
+                partition.setup
+            );
+        }
+    }
+}
