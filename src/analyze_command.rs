@@ -272,6 +272,7 @@ pub(crate) fn sweep_angle(args: &SweepArgs) -> Result<(), CliError> {
         &angles,
         side,
         args.view.resolution,
+        args.view.filter,
         |done, total| {
             bar.set_length(total as u64);
             bar.set_position(done as u64);
@@ -279,7 +280,7 @@ pub(crate) fn sweep_angle(args: &SweepArgs) -> Result<(), CliError> {
     );
     bar.finish_and_clear();
     let points = result.map_err(|e| CliError::Input(format!("{}: {e}", scene.name)))?;
-    let written = sweep::write(&scene.name, &points)
+    let written = sweep::write(&scene.name, &args.view.filter, &points)
         .map_err(|e| CliError::Failure(anyhow::anyhow!("{e}")))?;
     out.write("sweep-angle", &written)?;
     for (name, _) in &written {
@@ -299,6 +300,7 @@ pub(crate) fn temporal(args: &TemporalArgs) -> Result<(), CliError> {
         &techniques,
         args.frames as usize,
         args.view.resolution,
+        args.view.filter,
         |done, total| {
             bar.set_length(total as u64);
             bar.set_position(done as u64);
@@ -306,7 +308,7 @@ pub(crate) fn temporal(args: &TemporalArgs) -> Result<(), CliError> {
     );
     bar.finish_and_clear();
     let stability = result.map_err(|e| CliError::Input(format!("{}: {e}", scene.name)))?;
-    let written = temporal::write(&scene.name, &stability);
+    let written = temporal::write(&scene.name, &args.view.filter, &stability);
     out.write("temporal", &written)?;
     for (name, _) in &written {
         print_line(&out.path().join(name).display().to_string())?;

@@ -256,6 +256,11 @@ pub(crate) struct StudyView {
     /// Eye image size, WIDTHxHEIGHT (default: the scene's).
     #[arg(long, value_parser = parse_size, allow_hyphen_values = true)]
     pub(crate) eye_size: Option<(u32, u32)>,
+    /// The lookup filter of every map (as render --filter): nearest, pcf:K, disk:TAPS,RADIUS[,SEED],
+    /// vsm:K[,MIN_VARIANCE]; the filterable maps esm:K,C, evsm2:K,C[,MIN_VARIANCE],
+    /// evsm4:K,C+,C-[,MIN_VARIANCE], msm:K,ALPHA.
+    #[arg(long, default_value = "nearest", value_parser = filter_spec, allow_hyphen_values = true)]
+    pub(crate) filter: Filter,
 }
 
 /// Arguments of `shadowlab sweep-angle`.
@@ -266,8 +271,6 @@ pub(crate) struct SweepArgs {
     /// The techniques (near-parallel policies), comma-separated.
     /// Default: uniform, psm, lispsm, lispsm:minimax, lispsm:filament, lispsm:ogre,
     /// lispsm:osg, lispsm:osg_vdsm, optimal; for a scene of point lights: cube, dual-paraboloid, psm.
-    /// Default: uniform, uniform_limited, psm, lispsm, optimal; for a scene of point lights: cube, dual-paraboloid, psm.
-    /// Default: uniform, uniform_limited, psm, lispsm, logarithmic; for a scene of point lights: cube, dual-paraboloid, psm.
     #[arg(
         long,
         value_delimiter = ',',
@@ -295,7 +298,8 @@ pub(crate) struct TemporalArgs {
     /// Number of frames of the walk.
     #[arg(long, default_value_t = 24, allow_negative_numbers = true, value_parser = whole::<2, MAX_FRAMES>)]
     pub(crate) frames: u32,
-    /// The techniques, comma-separated.
+    /// The techniques, comma-separated. Default: uniform, uniform_limited, psm, lispsm, optimal;
+    /// for a scene of point lights: cube, dual-paraboloid, psm.
     #[arg(
         long,
         value_delimiter = ',',
@@ -318,7 +322,8 @@ pub(crate) struct CompareArgs {
     pub(crate) scene: SceneArg,
     /// The techniques, comma-separated: each `TECHNIQUE` or `TECHNIQUE:PARAMETER`, or an engine's
     /// preset (`bevy`, `filament`, `godot`, `babylon`, `threejs`, `unity`, `unreal`) with its
-    /// choices (as for analyze --techniques).
+    /// choices (as for analyze --techniques). Default: uniform, uniform_limited, psm, lispsm,
+    /// logarithmic; for a scene of point lights: cube, dual-paraboloid, psm.
     #[arg(
         long,
         value_delimiter = ',',

@@ -5,25 +5,34 @@
 //! pictures and the writing of files. The issue bounds it by 10 s on 2 cores.
 //!
 //! Also the study's cheapest unit, one combination (lispsm at 2000²) on a prepared eye pass, to
-//! separate the fixed cost from the per-combination one. Everything is deterministic.
+//! separate the fixed cost from the per-combination one; and the same unit for a point light's
+//! maps on `room-point` (the cube map, six rasterized faces with their near planes searched over
+//! the scene's triangles; the dual-paraboloid map, two hemispheres cast one ray per texel), at
+//! 2000². Everything is deterministic.
 //!
 //! Figures are recorded with the machine and date in docs/benchmarks.md.
 
 use std::hint::black_box;
 use std::time::Duration;
 
-use criterion::{Criterion, criterion_group, criterion_main};
+use criterion::measurement::WallTime;
+use criterion::{BenchmarkGroup, Criterion, criterion_group, criterion_main};
+use glam::DVec3;
 use shadowlab_analysis::study::{self, EyePass, Setting, StudyOptions};
 use shadowlab_analysis::truth::{exact_truth, scene_bvh};
 use shadowlab_raster::DepthFormat;
-use shadowlab_scene::builtin_scene;
-use shadowlab_shadow::{Bias, Filter, Splits, Technique, WarpChoice};
+use shadowlab_scene::{Scene, builtin_scene};
+use shadowlab_shadow::{Bias, Filter, LightSource, Splits, Technique, WarpChoice};
 
+/// The default techniques for a directional light: every technique key but those of point lights,
+/// and LiSPSM's minimax rule.
 fn default_options() -> StudyOptions {
+    let directional = LightSource::directional(DVec3::Y).expect("a unit vector");
     StudyOptions {
         techniques: Technique::KEYS
             .iter()
             .map(|key| Technique::parse(key, None).expect("a known key"))
+            .filter(|technique| technique.check_light(&directional).is_ok())
             .chain([Technique::parse("lispsm", Some("minimax")).expect("a known rule")])
             .collect(),
         resolutions: vec![750, 1000, 1250, 1500, 1750, 2000],
@@ -52,24 +61,49 @@ fn whole_study(c: &mut Criterion) {
         b.iter(|| study::run(black_box(&scene), &options, |_, _, _| {}).expect("the study"));
     });
 
-    let eye = EyePass::new(&scene).expect("the eye pass");
-    let bvh = scene_bvh(&scene).expect("the hierarchy");
-    let truth = exact_truth(&scene, &eye.image, &bvh).expect("the truth");
+    group.measurement_time(Duration::from_secs(10));
+    one_combination(
+        &mut group,
+        &scene,
+        &options,
+        Technique::Lispsm(WarpChoice::PAPER),
+        "outdoor/one-combination",
+    );
+    let room = builtin_scene("room-point").expect("the built-in room-point scene");
+    for (technique, name) in [
+        (Technique::Cube, "room-point/cube-2000"),
+        (Technique::DualParaboloid, "room-point/dual-paraboloid-2000"),
+    ] {
+        one_combination(&mut group, &room, &options, technique, name);
+    }
+    group.finish();
+}
+
+/// One combination of `technique` at 2000², nearest lookups, on `scene`'s prepared eye pass:
+/// planned, rendered, looked up and measured.
+fn one_combination(
+    group: &mut BenchmarkGroup<'_, WallTime>,
+    scene: &Scene,
+    options: &StudyOptions,
+    technique: Technique,
+    name: &str,
+) {
+    let eye = EyePass::new(scene).expect("the eye pass");
+    let bvh = scene_bvh(scene).expect("the hierarchy");
+    let truth = exact_truth(scene, &eye.image, &bvh).expect("the truth");
     let setting = Setting {
-        technique: Technique::Lispsm(WarpChoice::PAPER),
+        technique,
         resolution: 2000,
         partitions: 1,
         filter: Filter::Nearest,
     };
-    group.measurement_time(Duration::from_secs(10));
-    group.bench_function("outdoor/one-combination", |b| {
+    group.bench_function(name, |b| {
         b.iter(|| {
-            let shadows = study::render(&scene, &options, &setting, &eye, &bvh).expect("render");
-            study::measure(&scene, &truth, &eye.image, &shadows, setting.filter, &bvh)
+            let shadows = study::render(scene, options, &setting, &eye, &bvh).expect("render");
+            study::measure(scene, &truth, &eye.image, &shadows, setting.filter, &bvh)
                 .expect("the measurement")
         });
     });
-    group.finish();
 }
 
 criterion_group!(benches, whole_study);

@@ -96,6 +96,7 @@ pub fn sweep(
     angles: &[f64],
     side: Side,
     resolution: u32,
+    filter: Filter,
     mut progress: impl FnMut(usize, usize),
 ) -> Result<Vec<SweepPoint>, AnalysisError> {
     let bvh = Bvh::new(scene.mesh.positions(), scene.mesh.triangles())?;
@@ -104,7 +105,7 @@ pub fn sweep(
         resolutions: vec![resolution],
         partitions: vec![1],
         splits: shadowlab_shadow::Splits::Uniform,
-        filters: vec![Filter::Nearest],
+        filters: vec![filter],
         bias: Bias::DEFAULT,
         format: shadowlab_raster::DepthFormat::F32,
         map_truth: false,
@@ -126,18 +127,11 @@ pub fn sweep(
                 technique: *technique,
                 resolution,
                 partitions: 1,
-                filter: Filter::Nearest,
+                filter,
             };
             let outcome = match render(&lit_scene, &options, &setting, &eye, &bvh) {
                 Ok(shadows) => {
-                    let o = measure(
-                        &lit_scene,
-                        &truth,
-                        &eye.image,
-                        &shadows,
-                        Filter::Nearest,
-                        &bvh,
-                    )?;
+                    let o = measure(&lit_scene, &truth, &eye.image, &shadows, filter, &bvh)?;
                     Ok((o.errors, o.footprint[0].p99))
                 }
                 Err(e) => match e.undefined_reason() {
@@ -157,14 +151,19 @@ pub fn sweep(
 }
 
 /// The sweep written out: `sweep.csv` (every point), `sweep.md` (the angles near 0 side by side, to
-/// read the continuity), and `sweep.svg`/`sweep.png` (misclassified pixels and the 99th-percentile texel
-/// footprint against γ).
+/// read the continuity, naming the lookups' `filter`), and `sweep.svg`/`sweep.png` (misclassified pixels
+/// and the 99th-percentile texel footprint against γ).
 ///
 /// # Errors
 /// [`AnalysisError::Plot`] if the figure cannot be drawn.
-pub fn write(scene: &str, points: &[SweepPoint]) -> Result<Vec<(String, Vec<u8>)>, AnalysisError> {
+pub fn write(
+    scene: &str,
+    filter: &Filter,
+    points: &[SweepPoint],
+) -> Result<Vec<(String, Vec<u8>)>, AnalysisError> {
     use std::fmt::Write as _;
     let label = crate::report::technique_label;
+    let filter = crate::labels::filter_label(filter);
     let scene_field = crate::report::csv_field(scene);
     let mut csv = String::from(
         "scene,technique,gamma_rad,gamma_deg,defined,misclassified,falsely_lit,falsely_shadowed,footprint_p99\n",
@@ -199,7 +198,7 @@ pub fn write(scene: &str, points: &[SweepPoint]) -> Result<Vec<(String, Vec<u8>)
         acc
     });
     let mut md = format!(
-        "# Light swept toward the view direction: `{scene}`\n\nMisclassified pixels (99th percentile of the texel footprint, pixels per texel — the maximum sits at silhouettes and near-grazing surfaces, where any map's footprint grows without bound) at the smallest angles, where every technique must reach the uniform map continuously. A jump between larger angles can be physical: the light crossing the plane of a large surface (the ground) changes which side of it is lit.\n\n| technique | γ = 0 | 1e-9 rad | 1e-6 rad | 0.1° | 1° | 10° | 90° |\n|---|---:|---:|---:|---:|---:|---:|---:|\n"
+        "# Light swept toward the view direction: `{scene}`\n\nMisclassified pixels (99th percentile of the texel footprint, pixels per texel — the maximum sits at silhouettes and near-grazing surfaces, where any map's footprint grows without bound) at the smallest angles, where every technique must reach the uniform map continuously. A jump between larger angles can be physical: the light crossing the plane of a large surface (the ground) changes which side of it is lit. Every map is looked up with `{filter}`.\n\n| technique | γ = 0 | 1e-9 rad | 1e-6 rad | 0.1° | 1° | 10° | 90° |\n|---|---:|---:|---:|---:|---:|---:|---:|\n"
     );
     let near = [
         0.0,

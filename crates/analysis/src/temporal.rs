@@ -87,7 +87,7 @@ pub struct Stability {
 }
 
 /// Walks the camera over `frames` frames and counts each technique's shimmering pixels, with
-/// snapping off and on (1 texel).
+/// snapping off and on (1 texel), every map looked up with `filter`.
 ///
 /// # Errors
 /// Truth and rendering errors other than a technique not being defined.
@@ -96,6 +96,7 @@ pub fn temporal(
     techniques: &[Technique],
     frames: usize,
     resolution: u32,
+    filter: Filter,
     mut progress: impl FnMut(usize, usize),
 ) -> Result<Vec<Stability>, AnalysisError> {
     let bvh = Bvh::new(scene.mesh.positions(), scene.mesh.triangles())?;
@@ -119,7 +120,7 @@ pub fn temporal(
                 plan: PlanOptions::new(*technique),
                 resolution,
                 format: shadowlab_raster::DepthFormat::F32,
-                lookup: Lookup::new(Bias::DEFAULT, Filter::Nearest),
+                lookup: Lookup::new(Bias::DEFAULT, filter),
                 snap_texels: *snap,
             };
             match render_shadows(&moved, &options, &eye, nearest_visible, Some(&bvh)) {
@@ -193,16 +194,17 @@ pub(crate) fn shimmer(
 }
 
 /// The walk written out: `temporal.csv` (shimmering pixels per frame pair) and `temporal.md` (mean
-/// and largest per technique, snapping off and on).
+/// and largest per technique, snapping off and on, naming the lookups' `filter`).
 #[must_use]
-pub fn write(scene: &str, stability: &[Stability]) -> Vec<(String, Vec<u8>)> {
+pub fn write(scene: &str, filter: &Filter, stability: &[Stability]) -> Vec<(String, Vec<u8>)> {
     use std::fmt::Write as _;
     let label = crate::report::technique_label;
     let scene_field = crate::report::csv_field(scene);
+    let filter = crate::labels::filter_label(filter);
     let mut csv =
         String::from("scene,technique,snap_texels,frame,shimmering_pixels,surface_shimmer\n");
     let mut md = format!(
-        "# Temporal stability: `{scene}`\n\nThe camera walks {STEP_FRACTION} of the scene's radius and turns 0.1° per frame, and walks back the same way after {WALK_OUT_FRAMES} frames. A pixel shimmers (screen) when its shadow state flips between consecutive frames while the exact truth there does not. A surface point shimmers when its state in the previous frame's maps differs from its state in its own frame's maps: shadows crawling over still surfaces, which texel snapping is for.\n\n| technique | snapping | screen: mean shimmering pixels per frame | largest | surface: mean | largest |\n|---|---|---:|---:|---:|---:|\n"
+        "# Temporal stability: `{scene}`\n\nThe camera walks {STEP_FRACTION} of the scene's radius and turns 0.1° per frame, and walks back the same way after {WALK_OUT_FRAMES} frames. A pixel shimmers (screen) when its shadow state flips between consecutive frames while the exact truth there does not. A surface point shimmers when its state in the previous frame's maps differs from its state in its own frame's maps: shadows crawling over still surfaces, which texel snapping is for. Every map is looked up with `{filter}`.\n\n| technique | snapping | screen: mean shimmering pixels per frame | largest | surface: mean | largest |\n|---|---|---:|---:|---:|---:|\n"
     );
     for s in stability {
         let snapping = if s.snap_texels == 0 {

@@ -532,7 +532,15 @@ fn bad_images_and_frames_are_refused_by_field() {
 fn shimmer_over_a_walk_is_temporals() {
     let scene = small_outdoor();
     let frames = 4;
-    let expected = temporal(&scene, &[Technique::Uniform], frames, RESOLUTION, |_, _| {}).unwrap();
+    let expected = temporal(
+        &scene,
+        &[Technique::Uniform],
+        frames,
+        RESOLUTION,
+        Filter::Nearest,
+        |_, _| {},
+    )
+    .unwrap();
     let options = FrameOptions {
         lookup: Lookup::new(Bias::DEFAULT, Filter::Nearest),
         ..Case::new(Technique::Uniform).frame_options()

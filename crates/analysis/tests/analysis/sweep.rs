@@ -8,17 +8,25 @@ use shadowlab_shadow::{LogarithmicChoice, Technique, scene_eye};
 
 /// Misclassified pixels at each angle, in order.
 fn errors_at(scene: &shadowlab_scene::Scene, technique: Technique, angles: &[f64]) -> Vec<u64> {
-    sweep(scene, &[technique], angles, Side::Front, 256, |_, _| {})
-        .unwrap()
-        .iter()
-        .map(|p| {
-            let (m, _) = p
-                .outcome
-                .as_ref()
-                .unwrap_or_else(|e| panic!("{technique}: {e}"));
-            m.falsely_lit + m.falsely_shadowed
-        })
-        .collect()
+    sweep(
+        scene,
+        &[technique],
+        angles,
+        Side::Front,
+        256,
+        shadowlab_shadow::Filter::Nearest,
+        |_, _| {},
+    )
+    .unwrap()
+    .iter()
+    .map(|p| {
+        let (m, _) = p
+            .outcome
+            .as_ref()
+            .unwrap_or_else(|e| panic!("{technique}: {e}"));
+        m.falsely_lit + m.falsely_shadowed
+    })
+    .collect()
 }
 
 /// Claim: across φ (steps of 0.1°, from φ − 0.5° to φ + 0.5°) the change in misclassified

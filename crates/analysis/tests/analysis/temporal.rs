@@ -61,7 +61,15 @@ fn snapping_removes_surface_shimmer_from_sphere_and_diagonal_fits() {
             },
         ),
     ];
-    let runs = temporal(&scene, &techniques, 5, 512, |_, _| {}).unwrap();
+    let runs = temporal(
+        &scene,
+        &techniques,
+        5,
+        512,
+        shadowlab_shadow::Filter::Nearest,
+        |_, _| {},
+    )
+    .unwrap();
     let surface = |technique: Technique| -> u64 {
         runs.iter()
             .find(|s| s.technique == technique && s.snap_texels == 0)
