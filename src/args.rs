@@ -136,10 +136,7 @@ pub(crate) struct SceneArg {
     pub(crate) gltf_scene: Option<usize>,
 }
 
-/// The techniques `analyze` measures by default for directional and spot lights (the engines'
-/// presets are measured when named: `--techniques bevy,filament,godot,babylon,threejs,unity,unreal`).
-pub(crate) const ALL_TECHNIQUES: &str =
-    "uniform,uniform_limited,psm,lispsm,lispsm:minimax,logarithmic,optimal,sdsm";
+pub(crate) use shadowlab_analysis::study::DEFAULT_TECHNIQUES as ALL_TECHNIQUES;
 
 /// Arguments of `shadowlab analyze`.
 #[derive(Debug, Args)]

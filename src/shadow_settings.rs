@@ -5,6 +5,7 @@
 
 use std::path::Path;
 
+use shadowlab_analysis::study::default_techniques;
 use shadowlab_raster::{DepthFormat, MAX_TARGET_SIZE};
 use shadowlab_scene::scene_file::MAX_IMAGE_SIDE;
 use shadowlab_scene::{
@@ -352,9 +353,7 @@ fn only_point_lights(scene: &Scene) -> bool {
 }
 
 /// The techniques a study command measures: those given (`--techniques`), else its default for
-/// directional and spot lights (`directed`, a comma-separated list) — or, for a scene of point
-/// lights, [`POINT_LIGHT_TECHNIQUES`]; for a scene that mixes point lights with others, PSM, the one
-/// technique that serves both.
+/// the scene's lights ([`default_techniques`]: `directed` for directional and spot lights).
 ///
 /// # Errors
 /// As [`check_techniques`], for `--techniques`.
@@ -368,27 +367,13 @@ pub(crate) fn study_techniques(
     Ok(techniques)
 }
 
-/// The techniques given, or the default of [`study_techniques`].
+/// The techniques given, or the default of [`default_techniques`].
 fn default_or_given(scene: &Scene, given: Option<&[Technique]>, directed: &str) -> Vec<Technique> {
-    if let Some(given) = given {
-        return given.to_vec();
-    }
-    let has_point = scene
-        .lights
-        .iter()
-        .any(|light| matches!(light, SceneLight::Point { .. }));
-    let list = match (has_point, only_point_lights(scene)) {
-        (false, _) => directed,
-        (true, true) => POINT_LIGHT_TECHNIQUES,
-        (true, false) => "psm",
-    };
-    list.split(',')
-        .map(|spec| Technique::parse_spec(spec).expect("the default lists parse"))
-        .collect()
+    given.map_or_else(
+        || default_techniques(scene, directed),
+        <[Technique]>::to_vec,
+    )
 }
-
-/// What study commands measure for a scene of point lights by default.
-pub(crate) const POINT_LIGHT_TECHNIQUES: &str = "cube,dual-paraboloid,psm";
 
 /// Checks that every technique serves every light of `scene`: an input error naming the flag or
 /// field that chose the technique, the light (`light[K]`, its kind) and the techniques that serve

@@ -121,7 +121,7 @@ pub fn report(study: &Study) -> Result<Report, AnalysisError> {
         html,
         pictures,
         csv: csv(study)?,
-        json: serde_json::to_string_pretty(&json(study)).expect("plain data"),
+        json: serde_json::to_string_pretty(&results_json(study)).expect("plain data"),
         pareto_svg,
         pareto_png,
         view_axis,
@@ -613,7 +613,10 @@ fn csv(study: &Study) -> Result<String, AnalysisError> {
     Ok(out)
 }
 
-fn json(study: &Study) -> Value {
+/// `results.json` of `study`: the scene, the eye image, the timing runs and every measurement (what
+/// `analyze` writes, and what the Python package returns).
+#[must_use]
+pub fn results_json(study: &Study) -> Value {
     json!({
         "scene": study.scene,
         "timing_runs": study.timing_runs,

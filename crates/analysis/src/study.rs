@@ -5,7 +5,7 @@ use std::time::{Duration, Instant};
 
 use rayon::prelude::*;
 use shadowlab_raster::{DepthFormat, EyeImage, NO_TRIANGLE};
-use shadowlab_scene::Scene;
+use shadowlab_scene::{Scene, SceneLight};
 use shadowlab_shadow::optimal::OptimalOptions;
 use shadowlab_shadow::{
     Bias, Filter, FocusPolicy, FrameOptions, LightShadow, LightSource, Lookup, PlanOptions,
@@ -60,6 +60,39 @@ pub struct StudyOptions {
 
 /// The timing runs per combination of `analyze` by default: the fewest that have a median.
 pub const DEFAULT_TIMING_RUNS: usize = 3;
+
+/// The techniques `analyze` measures by default for directional and spot lights (the engines'
+/// presets are measured when named).
+pub const DEFAULT_TECHNIQUES: &str =
+    "uniform,uniform_limited,psm,lispsm,lispsm:minimax,logarithmic,optimal,sdsm";
+
+/// What a study measures by default for a scene whose lights are all point lights.
+pub const POINT_LIGHT_TECHNIQUES: &str = "cube,dual-paraboloid,psm";
+
+/// The shadow-map sides `analyze` measures by default (Chong and Gortler's: 750 to 2000).
+pub const DEFAULT_RESOLUTIONS: [u32; 6] = [750, 1000, 1250, 1500, 1750, 2000];
+
+/// The techniques a study of `scene` measures when none are named: `directed` (a comma-separated
+/// list of specs) for directional and spot lights, [`POINT_LIGHT_TECHNIQUES`] for a scene of point
+/// lights, and PSM — the one technique that serves both — for a scene that mixes them.
+///
+/// # Panics
+/// If `directed` does not parse (the lists are the tool's own constants).
+#[must_use]
+pub fn default_techniques(scene: &Scene, directed: &str) -> Vec<Technique> {
+    let point = |light: &SceneLight| matches!(light, SceneLight::Point { .. });
+    let list = match (
+        scene.lights.iter().any(point),
+        scene.lights.iter().all(point),
+    ) {
+        (false, _) => directed,
+        (true, true) => POINT_LIGHT_TECHNIQUES,
+        (true, false) => "psm",
+    };
+    list.split(',')
+        .map(|spec| Technique::parse_spec(spec).expect("the default lists parse"))
+        .collect()
+}
 
 /// The pictures of one combination: rows from the bottom, like the eye image, one pixel per eye
 /// pixel.

@@ -85,8 +85,8 @@ fn swept_light(scene: &Scene, to_light: DVec3) -> SceneLight {
 }
 
 /// Sweeps the scene's first light over `angles` for every technique, at one resolution and
-/// filter: a point light around the eye at its distance, any other as a directional light
-/// ([`swept_light`]).
+/// filter: a point light moved around the eye at its own distance (its range kept), any other
+/// replaced by a directional light.
 ///
 /// # Errors
 /// Truth and rendering errors other than a technique not being defined.

@@ -13,7 +13,7 @@
 //! - **far** = the greatest depth along the face's axis of `B_k`'s vertices, no further than the
 //!   light's range;
 //! - **near** = the least depth along the axis of the scene's geometry inside `B_k`
-//!   ([`nearest_depth`]) — the cube's near plane chosen from the scene, not a constant, as large
+//!   (`omni::nearest`) — the cube's near plane chosen from the scene, not a constant, as large
 //!   as keeps every occluder in front of it, for the depth precision the near plane decides.
 //!   Geometry touching the light would put it at 0; it is kept at [`MIN_NEAR_FRACTION`] of far.
 //!

@@ -1,0 +1,326 @@
+//! `shadowlab._native` params: the closed forms of `shadowlab-params`, evaluated element by element
+//! over equally long 1-D arrays (the Python package broadcasts its arguments to one shape first,
+//! as numpy does, and reshapes the result). A value outside a formula's domain raises `ValueError`
+//! naming the parameter, with the same domains as the Rust types; no NaN is returned for bad
+//! input.
+
+use numpy::{PyArray1, PyReadonlyArray1};
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use shadowlab_params::cad::{self, Falloff};
+use shadowlab_params::splits::SplitScheme;
+use shadowlab_params::{
+    DepthRange, FrustumModel, HalfFov, LightAngle, ParamError, ParameterRule, WarpParameter, gmnpr,
+    lispsm, vsm,
+};
+
+/// A `ParamError` as Python's `ValueError`, its message starting with the parameter's name.
+pub(crate) fn value_error(error: &ParamError) -> PyErr {
+    PyValueError::new_err(format!("{}: {error}", error.parameter()))
+}
+
+/// `f` of the `i`-th elements of `args` for every `i`, the GIL released while it runs.
+fn elementwise<'py, const N: usize>(
+    py: Python<'py>,
+    args: [PyReadonlyArray1<'py, f64>; N],
+    f: impl Fn([f64; N]) -> Result<f64, ParamError> + Send + Sync,
+) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    let slices: Vec<&[f64]> = args
+        .iter()
+        .map(|a| a.as_slice())
+        .collect::<Result<_, _>>()?;
+    let len = slices.first().map_or(0, |s| s.len());
+    if slices.iter().any(|s| s.len() != len) {
+        return Err(PyValueError::new_err(
+            "arguments: the arrays must have one length (broadcast them first)",
+        ));
+    }
+    let values = py
+        .detach(|| {
+            (0..len)
+                .map(|i| f(std::array::from_fn(|k| slices[k][i])))
+                .collect::<Result<Vec<f64>, ParamError>>()
+        })
+        .map_err(|e| value_error(&e))?;
+    Ok(PyArray1::from_vec(py, values))
+}
+
+/// The 2-D view-frustum model of CAD and GMNPR: depths `near`, `far`, half the field of view
+/// `half_fov` (radians).
+fn model(near: f64, far: f64, half_fov: f64) -> Result<FrustumModel, ParamError> {
+    Ok(FrustumModel::new(
+        DepthRange::new(near, far)?,
+        HalfFov::from_radians(half_fov)?,
+    ))
+}
+
+/// LiSPSM eq. 3 (formulas.md §2.3): `dp/ds` at eye depth `z` for the near distance `n`.
+#[pyfunction]
+pub(crate) fn lispsm_dp_ds<'py>(
+    py: Python<'py>,
+    near: PyReadonlyArray1<'py, f64>,
+    far: PyReadonlyArray1<'py, f64>,
+    n: PyReadonlyArray1<'py, f64>,
+    z: PyReadonlyArray1<'py, f64>,
+) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    elementwise(py, [near, far, n, z], |[near, far, n, z]| {
+        lispsm::dp_ds(DepthRange::new(near, far)?, n, z)
+    })
+}
+
+/// LiSPSM §4.4: `n_opt = n + √(f n)` (the parameter at γ = 90°).
+#[pyfunction]
+pub(crate) fn lispsm_n_opt<'py>(
+    py: Python<'py>,
+    near: PyReadonlyArray1<'py, f64>,
+    far: PyReadonlyArray1<'py, f64>,
+) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    elementwise(py, [near, far], |[near, far]| {
+        Ok(lispsm::n_opt(DepthRange::new(near, far)?))
+    })
+}
+
+/// LiSPSM §4.4 at any angle: `n_opt = (n + √(f n))/sin γ`.
+#[pyfunction]
+pub(crate) fn lispsm_n_opt_general<'py>(
+    py: Python<'py>,
+    near: PyReadonlyArray1<'py, f64>,
+    far: PyReadonlyArray1<'py, f64>,
+    gamma: PyReadonlyArray1<'py, f64>,
+) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    elementwise(py, [near, far, gamma], |[near, far, gamma]| {
+        Ok(lispsm::n_opt_general(
+            DepthRange::new(near, far)?,
+            LightAngle::from_radians(gamma)?,
+        ))
+    })
+}
+
+/// LiSPSM's Δz parameter (formulas.md §2.6): `n = (z0 + √(z0 (z0 + d sin γ)))/sin γ`.
+#[pyfunction]
+pub(crate) fn lispsm_n_delta_z<'py>(
+    py: Python<'py>,
+    z0: PyReadonlyArray1<'py, f64>,
+    depth: PyReadonlyArray1<'py, f64>,
+    gamma: PyReadonlyArray1<'py, f64>,
+) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    elementwise(py, [z0, depth, gamma], |[z0, depth, gamma]| {
+        lispsm::n_delta_z(z0, depth, LightAngle::from_radians(gamma)?)
+    })
+}
+
+/// LiSPSM eq. 3's largest `dp/ds` over `[near, far]` for the near distance `n`.
+#[pyfunction]
+pub(crate) fn lispsm_max_error<'py>(
+    py: Python<'py>,
+    near: PyReadonlyArray1<'py, f64>,
+    far: PyReadonlyArray1<'py, f64>,
+    n: PyReadonlyArray1<'py, f64>,
+) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    elementwise(py, [near, far, n], |[near, far, n]| {
+        lispsm::max_error(DepthRange::new(near, far)?, n)
+    })
+}
+
+/// CAD eq. 12: the aliasing error `m_z` along the warp axis at eye depth `z`.
+#[pyfunction]
+#[expect(
+    clippy::too_many_arguments,
+    reason = "the formula's inputs, one array each"
+)]
+pub(crate) fn cad_m_z<'py>(
+    py: Python<'py>,
+    near: PyReadonlyArray1<'py, f64>,
+    far: PyReadonlyArray1<'py, f64>,
+    half_fov: PyReadonlyArray1<'py, f64>,
+    gamma: PyReadonlyArray1<'py, f64>,
+    n_prime: PyReadonlyArray1<'py, f64>,
+    z: PyReadonlyArray1<'py, f64>,
+    resolution_ratio: PyReadonlyArray1<'py, f64>,
+) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    elementwise(
+        py,
+        [near, far, half_fov, gamma, n_prime, z, resolution_ratio],
+        |[near, far, half_fov, gamma, n_prime, z, ratio]| {
+            cad::m_z(
+                &model(near, far, half_fov)?,
+                LightAngle::from_radians(gamma)?,
+                n_prime,
+                z,
+                ratio,
+            )
+        },
+    )
+}
+
+/// CAD eq. 16: `n′(γ)` with the fall-back curve `falloff` (`eq18`, `eq17`, `sin2`).
+#[pyfunction]
+pub(crate) fn cad_n_prime<'py>(
+    py: Python<'py>,
+    falloff: &str,
+    near: PyReadonlyArray1<'py, f64>,
+    far: PyReadonlyArray1<'py, f64>,
+    half_fov: PyReadonlyArray1<'py, f64>,
+    gamma: PyReadonlyArray1<'py, f64>,
+) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    let falloff = Falloff::from_key(falloff).ok_or_else(|| {
+        PyValueError::new_err(format!(
+            "falloff: unknown {falloff:?}; known: {}",
+            Falloff::ALL.map(Falloff::key).join(", ")
+        ))
+    })?;
+    elementwise(
+        py,
+        [near, far, half_fov, gamma],
+        |[near, far, half_fov, gamma]| {
+            Ok(cad::n_prime(
+                &model(near, far, half_fov)?,
+                LightAngle::from_radians(gamma)?,
+                falloff,
+            ))
+        },
+    )
+}
+
+/// GMNPR eqs. 1–2: the normalised perspective error `F(λ, θ, z)`; `lam = inf` is the uniform map.
+#[pyfunction]
+pub(crate) fn gmnpr_error<'py>(
+    py: Python<'py>,
+    near: PyReadonlyArray1<'py, f64>,
+    far: PyReadonlyArray1<'py, f64>,
+    half_fov: PyReadonlyArray1<'py, f64>,
+    gamma: PyReadonlyArray1<'py, f64>,
+    lam: PyReadonlyArray1<'py, f64>,
+    z: PyReadonlyArray1<'py, f64>,
+) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    elementwise(
+        py,
+        [near, far, half_fov, gamma, lam, z],
+        |[near, far, half_fov, gamma, lam, z]| {
+            gmnpr::error(
+                &model(near, far, half_fov)?,
+                LightAngle::from_radians(gamma)?,
+                WarpParameter::from_lambda(lam)?,
+                z,
+            )
+        },
+    )
+}
+
+/// GMNPR: F's largest value over `[near, far]` (F is convex in z, formulas.md §5.7).
+#[pyfunction]
+pub(crate) fn gmnpr_max_error<'py>(
+    py: Python<'py>,
+    near: PyReadonlyArray1<'py, f64>,
+    far: PyReadonlyArray1<'py, f64>,
+    half_fov: PyReadonlyArray1<'py, f64>,
+    gamma: PyReadonlyArray1<'py, f64>,
+    lam: PyReadonlyArray1<'py, f64>,
+) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    elementwise(
+        py,
+        [near, far, half_fov, gamma, lam],
+        |[near, far, half_fov, gamma, lam]| {
+            Ok(gmnpr::max_error(
+                &model(near, far, half_fov)?,
+                LightAngle::from_radians(gamma)?,
+                WarpParameter::from_lambda(lam)?,
+            ))
+        },
+    )
+}
+
+/// The warp parameter λ a rule picks (`shadowlab_params::ParameterRule`: `uniform`, `lispsm`,
+/// `lispsm_dz`, `cad`, `cad_eq17`, `cad_sin2`, `gmnpr`, `glpr`, `minimax`); `inf` for the
+/// uniform map. A rule undefined at an angle (GLPR for γ ≤ φ) raises `ValueError` naming `gamma`.
+#[pyfunction]
+pub(crate) fn rule_lambda<'py>(
+    py: Python<'py>,
+    rule: &str,
+    near: PyReadonlyArray1<'py, f64>,
+    far: PyReadonlyArray1<'py, f64>,
+    half_fov: PyReadonlyArray1<'py, f64>,
+    gamma: PyReadonlyArray1<'py, f64>,
+) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    let rule = ParameterRule::from_key(rule).ok_or_else(|| {
+        PyValueError::new_err(format!(
+            "rule: unknown {rule:?}; known: {}",
+            ParameterRule::ALL.map(ParameterRule::key).join(", ")
+        ))
+    })?;
+    elementwise(
+        py,
+        [near, far, half_fov, gamma],
+        |[near, far, half_fov, gamma]| {
+            let angle = LightAngle::from_radians(gamma)?;
+            rule.warp(&model(near, far, half_fov)?, angle)
+                .map(WarpParameter::lambda)
+                .ok_or(ParamError::OutOfDomain {
+                    name: "gamma",
+                    value: gamma,
+                    requirement: format!("an angle where the {} rule is defined", rule.key()),
+                })
+        },
+    )
+}
+
+/// The boundaries of a z-partition of `[near, far]` into `partitions` parts (CAD eqs. 5 and 19,
+/// the practical split): `scheme` is `uniform`, `logarithmic`, `practical` (with `weight`) or
+/// `adaptive` (with `delta` and `gamma`).
+#[pyfunction]
+#[pyo3(signature = (scheme, near, far, partitions, weight=0.5, delta=2.0, gamma=std::f64::consts::FRAC_PI_2))]
+#[expect(
+    clippy::too_many_arguments,
+    reason = "each scheme's own parameters, by keyword"
+)]
+pub(crate) fn split_boundaries<'py>(
+    py: Python<'py>,
+    scheme: &str,
+    near: f64,
+    far: f64,
+    partitions: usize,
+    weight: f64,
+    delta: f64,
+    gamma: f64,
+) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    let scheme = match scheme {
+        "uniform" => SplitScheme::Uniform,
+        "logarithmic" => SplitScheme::Logarithmic,
+        "practical" => SplitScheme::Practical { weight },
+        "adaptive" => SplitScheme::Adaptive {
+            delta,
+            gamma: LightAngle::from_radians(gamma).map_err(|e| value_error(&e))?,
+        },
+        other => {
+            return Err(PyValueError::new_err(format!(
+                "scheme: unknown {other:?}; known: uniform, logarithmic, practical, adaptive"
+            )));
+        }
+    };
+    let range = DepthRange::new(near, far).map_err(|e| value_error(&e))?;
+    let boundaries = scheme
+        .boundaries(range, partitions)
+        .map_err(|e| value_error(&e))?;
+    Ok(PyArray1::from_vec(py, boundaries))
+}
+
+/// VSM (the CAD survey's eq. 2 on shifted moments): the Chebyshev upper bound on the lit fraction
+/// at receiver depth `t` of depths with mean `mean` and variance `variance` (floored at
+/// `min_variance`).
+#[pyfunction]
+pub(crate) fn vsm_lit_fraction<'py>(
+    py: Python<'py>,
+    mean: PyReadonlyArray1<'py, f64>,
+    variance: PyReadonlyArray1<'py, f64>,
+    t: PyReadonlyArray1<'py, f64>,
+    min_variance: PyReadonlyArray1<'py, f64>,
+) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    elementwise(
+        py,
+        [mean, variance, t, min_variance],
+        |[mean, variance, t, min_variance]| {
+            // Moments about the mean itself: m1 = 0, m2 = the variance.
+            vsm::ShiftedMoments::new(mean, 0.0, variance)?.lit_fraction(t, min_variance)
+        },
+    )
+}
