@@ -24,6 +24,7 @@ fn _native(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add_function(wrap_pyfunction!(params::cad_n_prime, module)?)?;
     module.add_function(wrap_pyfunction!(params::gmnpr_error, module)?)?;
     module.add_function(wrap_pyfunction!(params::gmnpr_max_error, module)?)?;
+    module.add_function(wrap_pyfunction!(params::gmnpr_lambda_equal_error, module)?)?;
     module.add_function(wrap_pyfunction!(params::rule_lambda, module)?)?;
     module.add_function(wrap_pyfunction!(params::split_boundaries, module)?)?;
     module.add_function(wrap_pyfunction!(params::vsm_lit_fraction, module)?)?;

@@ -182,6 +182,38 @@ pub(crate) fn cad_n_prime<'py>(
     )
 }
 
+/// GMNPR eq. 4 (CAD eq. 13): the equal-error λ, `F(λ, θ, near) = F(λ, θ, far)`, of the branch
+/// that applies at θ; below θ₀ no λ equalises the errors, and an angle there raises `ValueError`
+/// naming `gamma` (the raw value is zero or negative).
+#[pyfunction]
+pub(crate) fn gmnpr_lambda_equal_error<'py>(
+    py: Python<'py>,
+    near: PyReadonlyArray1<'py, f64>,
+    far: PyReadonlyArray1<'py, f64>,
+    half_fov: PyReadonlyArray1<'py, f64>,
+    gamma: PyReadonlyArray1<'py, f64>,
+) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    elementwise(
+        py,
+        [near, far, half_fov, gamma],
+        |[near, far, half_fov, gamma]| {
+            let lambda = gmnpr::lambda_equal_error(
+                &model(near, far, half_fov)?,
+                LightAngle::from_radians(gamma)?,
+            );
+            if lambda > 0.0 {
+                Ok(lambda)
+            } else {
+                Err(ParamError::OutOfDomain {
+                    name: "gamma",
+                    value: gamma,
+                    requirement: "above θ₀, where an equal-error λ exists".into(),
+                })
+            }
+        },
+    )
+}
+
 /// GMNPR eqs. 1–2: the normalised perspective error `F(λ, θ, z)`; `lam = inf` is the uniform map.
 #[pyfunction]
 pub(crate) fn gmnpr_error<'py>(

@@ -11,6 +11,7 @@ use pyo3::types::PyDict;
 use shadowlab_hull::{Perspective, ViewPose};
 use shadowlab_scene::{
     BUILTIN_SCENES, Camera, Mesh, SceneLight, ShadowSettings, builtin_scene, load_scene,
+    parse_scene,
 };
 
 /// A scene: its mesh, camera and lights (`shadowlab_scene::Scene`).
@@ -64,10 +65,22 @@ impl Scene {
         BUILTIN_SCENES.to_vec()
     }
 
-    /// The scene of a TOML scene file or a glTF 2.0 file (`.gltf`, `.glb`).
+    /// The scene of a TOML scene file, a glTF 2.0 file (`.gltf`, `.glb`) or an OBJ file (the
+    /// mesh alone, with the scene files' default camera and sun, as a scene file naming only
+    /// `[[mesh]] obj = PATH` has them).
     #[staticmethod]
     fn load(path: PathBuf) -> PyResult<Self> {
-        load_scene(&path)
+        let is_obj = path
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("obj"));
+        let scene = if is_obj {
+            let quoted = toml::Value::String(path.to_string_lossy().into_owned());
+            let text = format!("[[mesh]]\nobj = {quoted}\n");
+            parse_scene(&text, &path)
+        } else {
+            load_scene(&path)
+        };
+        scene
             .map(|inner| Self { inner })
             .map_err(|e| bad("path", e))
     }

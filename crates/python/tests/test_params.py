@@ -62,6 +62,18 @@ def test_lispsm_n_opt_equalises_the_error_at_near_and_far(nf):
     assert at_near == pytest.approx(at_far, rel=1e-9)
 
 
+@given(depths, half_fovs, angles)
+def test_the_equal_error_lambda_equalises_f_at_near_and_far(nf, half_fov, gamma):
+    near, far = nf
+    try:
+        lam = params.gmnpr_lambda_equal_error(near, far, half_fov, gamma)
+    except ValueError as error:
+        assert str(error).startswith("gamma")
+        return
+    at_near, at_far = params.gmnpr_error(near, far, half_fov, gamma, lam, [near, far])
+    assert at_near == pytest.approx(at_far, rel=1e-7)
+
+
 @given(depths, st.floats(min_value=0.0, max_value=1.0))
 def test_large_n_tends_to_the_uniform_map(nf, t):
     near, far = nf

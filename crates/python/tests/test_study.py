@@ -140,3 +140,15 @@ def test_analyze_records_make_a_dataframe():
     frame = pandas.DataFrame(sl.analyze(small(), ["lispsm", "uniform"], [128], timing_runs=1).records)
     assert list(frame["setting_technique"]) == ["lispsm", "uniform"]
     assert (frame["misclassified"] >= 0).all()
+
+
+def test_scene_files_of_every_kind_load(tmp_path):
+    obj = tmp_path / "tri.obj"
+    obj.write_text("v 0 0 0\nv 1 0 0\nv 0 0 1\nf 1 3 2\n")
+    from_obj = sl.Scene.load(obj)
+    assert from_obj.indices.shape == (1, 3) and from_obj.lights[0]["kind"] == "directional"
+    toml = tmp_path / "lamp.toml"
+    toml.write_text(f'[[mesh]]\nobj = "tri.obj"\n\n[[light]]\nkind = "point"\nposition = [0.2, 1.0, 0.2]\n')
+    assert sl.Scene.load(toml).lights == [{"kind": "point", "position": [0.2, 1.0, 0.2], "range": None}]
+    with pytest.raises(ValueError, match="^path"):
+        sl.Scene.load(tmp_path / "missing.toml")

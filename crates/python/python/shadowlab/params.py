@@ -21,6 +21,7 @@ __all__ = [
     "cad_m_z",
     "cad_n_prime",
     "gmnpr_error",
+    "gmnpr_lambda_equal_error",
     "gmnpr_max_error",
     "lispsm_dp_ds",
     "lispsm_max_error",
@@ -93,6 +94,12 @@ def cad_n_prime(near: ArrayLike, far: ArrayLike, half_fov: ArrayLike, gamma: Arr
 def gmnpr_error(near: ArrayLike, far: ArrayLike, half_fov: ArrayLike, gamma: ArrayLike, lam: ArrayLike, z: ArrayLike) -> F64:
     """GMNPR eqs. 1–2: the normalised perspective error F(λ, θ, z) (``lam = inf``: uniform)."""
     return _call(_native.gmnpr_error, near, far, half_fov, gamma, lam, z)
+
+
+def gmnpr_lambda_equal_error(near: ArrayLike, far: ArrayLike, half_fov: ArrayLike, gamma: ArrayLike) -> F64:
+    """GMNPR eq. 4 (CAD eq. 13): the λ with F(λ, θ, near) = F(λ, θ, far). Below θ₀ none exists:
+    ``ValueError`` naming ``gamma``."""
+    return _call(_native.gmnpr_lambda_equal_error, near, far, half_fov, gamma)
 
 
 def gmnpr_max_error(near: ArrayLike, far: ArrayLike, half_fov: ArrayLike, gamma: ArrayLike, lam: ArrayLike) -> F64:
