@@ -15,24 +15,20 @@
 //! - **near** = the least depth along the axis of the scene's geometry inside `B_k`
 //!   (`omni::nearest`) — the cube's near plane chosen from the scene, not a constant, as large
 //!   as keeps every occluder in front of it, for the depth precision the near plane decides.
-//!   Geometry touching the light would put it at 0; it is kept at [`MIN_NEAR_FRACTION`] of far.
+//!   Geometry touching the light would put it at 0; it is kept at
+//!   [`crate::omni::MIN_NEAR_FRACTION`] of far.
 //!
 //! Engines use one near plane for all six faces (a constant, or the light's radius); per-face
 //! nears are shadowlab's focusing, named here so that the two are not confused.
 
 use glam::DVec3;
-use shadowlab_hull::{NdcDepth, Perspective, Tolerances, ViewPose};
+use shadowlab_hull::{NdcDepth, Perspective, ViewPose};
 
 use crate::error::ShadowError;
-use crate::focus::{focus_polyhedron, view_model};
-use crate::input::{LightSource, PlanInput};
-use crate::omni::{LightFace, nearest};
+use crate::input::PlanInput;
+use crate::omni::{LightFace, PointLightPlan};
 use crate::setup::{LightSetup, ProjectiveMapping, ShadowMapping};
 use crate::technique::Technique;
-
-/// The least near distance of a face, as a fraction of its far distance: where geometry touches
-/// the light, the near plane cannot reach it, and what lies nearer is left out of the map.
-pub const MIN_NEAR_FRACTION: f64 = 1e-5;
 
 /// The cube's faces in OpenGL's order (+x, −x, +y, −y, +z, −z): name, view direction and the
 /// up vector of its image (OpenGL 4.6 Table 8.19).
@@ -56,67 +52,34 @@ pub(crate) fn plan(
     positions: &[DVec3],
     triangles: &[[u32; 3]],
 ) -> Result<Vec<(LightFace, LightSetup)>, ShadowError> {
-    let LightSource::Point { position, range } = input.light else {
-        return Err(ShadowError::UnservedLight {
-            technique: Technique::Cube.key(),
-            light: input.light.kind(),
-            serving: Technique::DIRECTED_LIGHT_TECHNIQUES,
-        });
-    };
-    let body = focus_polyhedron(input)?;
-    let (_, half_fov) = view_model(input)?;
-    let e = input.eye.pose.eye();
-    let gamma =
-        shadowlab_hull::light_view_angle(input.eye.pose.forward(), input.light.toward_from(e))?;
+    let plan = PointLightPlan::new(Technique::Cube, input, positions, triangles)?;
+    let position = plan.position();
     let mut faces = Vec::new();
     for (name, axis, up) in FACES {
-        let right = axis.cross(up);
         let face = LightFace {
             name,
             light: position,
             axis,
-            across: Some([right, up]),
-        };
-        let Some(part) = body.intersect_planes(&face.planes(), &Tolerances::DEFAULT) else {
-            continue;
+            across: Some([axis.cross(up), up]),
         };
         let depth = |p: DVec3| axis.dot(p - position);
-        let far = part
-            .vertices()
-            .iter()
-            .map(|v| depth(*v))
-            .fold(0.0, f64::max);
-        let far = range.map_or(far, |range| far.min(range));
         // An affine depth is least at a corner of the clipped triangle.
-        let Some(nearest) = nearest(&part, positions, triangles, |polygon| {
+        let least = |polygon: &[DVec3]| {
             polygon
                 .iter()
                 .map(|p| depth(*p))
                 .fold(f64::INFINITY, f64::min)
-        }) else {
+        };
+        let Some(focus) = plan.focus(&face, depth, least) else {
             continue;
         };
-        if far <= 0.0 || nearest >= far {
-            continue;
-        }
-        let near = nearest.max(far * MIN_NEAR_FRACTION);
         let view = ViewPose::look_to(position, axis, up)?;
-        let projection = Perspective::new(std::f64::consts::FRAC_PI_2, 1.0, near, far)?;
-        faces.push((
-            face,
-            LightSetup {
-                technique: Technique::Cube,
-                mapping: ShadowMapping::Projective(ProjectiveMapping::new(
-                    view.view_matrix(),
-                    projection.matrix(NdcDepth::NegativeOneToOne),
-                )),
-                gamma,
-                half_fov,
-                warp: None,
-                psm: None,
-                focus_body: part.vertices().to_vec(),
-            },
+        let projection = Perspective::new(std::f64::consts::FRAC_PI_2, 1.0, focus.near, focus.far)?;
+        let mapping = ShadowMapping::Projective(ProjectiveMapping::new(
+            view.view_matrix(),
+            projection.matrix(NdcDepth::NegativeOneToOne),
         ));
+        faces.push((face, plan.setup(mapping, &focus)));
     }
     if faces.is_empty() {
         return Err(ShadowError::EmptyFocusBody);

@@ -65,7 +65,7 @@ pub use faces::FaceRegion;
 pub use input::{Eye, FocusPolicy, LightSource, PlanInput};
 pub use lookup::{DEFAULT_DISK_SEED, DEFAULT_MIN_VARIANCE, Filter, Lookup, MomentMethod};
 pub use map::{MapOptions, ShadowMap};
-pub use omni::LightFace;
+pub use omni::{LightFace, MIN_NEAR_FRACTION};
 pub use partition::{CullingSphere, Partition, Region};
 pub use plan::{Splits, plan, plan_partitions};
 pub use render::{

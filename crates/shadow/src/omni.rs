@@ -4,7 +4,121 @@
 
 use glam::DVec3;
 use rayon::prelude::*;
-use shadowlab_hull::{ConvexPolyhedron, Plane};
+use shadowlab_hull::{ConvexPolyhedron, Plane, Tolerances};
+
+use crate::error::ShadowError;
+use crate::focus::{focus_polyhedron, view_model};
+use crate::input::{LightSource, PlanInput};
+use crate::setup::{LightSetup, ShadowMapping};
+use crate::technique::Technique;
+
+/// The least near distance of a face, as a fraction of its far distance: where geometry touches
+/// the light, the near plane cannot reach it, and what lies nearer is left out of the map.
+pub const MIN_NEAR_FRACTION: f64 = 1e-5;
+
+/// What every face of a point light's omnidirectional map is planned from: the light, its range,
+/// the focus body B, and the view's γ and φ (which the set-ups report).
+pub(crate) struct PointLightPlan<'a> {
+    technique: Technique,
+    position: DVec3,
+    range: Option<f64>,
+    body: ConvexPolyhedron,
+    gamma: f64,
+    half_fov: f64,
+    positions: &'a [DVec3],
+    triangles: &'a [[u32; 3]],
+}
+
+/// A face's focus: its part of B and its near and far distances.
+pub(crate) struct FaceFocus {
+    /// B ∩ the face's directions.
+    pub(crate) part: ConvexPolyhedron,
+    /// The near distance: the nearest geometry in the part, floored at [`MIN_NEAR_FRACTION`] of
+    /// the far.
+    pub(crate) near: f64,
+    /// The far distance: the part's farthest vertex, no farther than the range.
+    pub(crate) far: f64,
+}
+
+impl<'a> PointLightPlan<'a> {
+    /// The plan of `technique` for `input`'s point light over the scene's triangles.
+    ///
+    /// # Errors
+    /// [`ShadowError::UnservedLight`] for a light that is not a point light; B's and γ's errors.
+    pub(crate) fn new(
+        technique: Technique,
+        input: &PlanInput,
+        positions: &'a [DVec3],
+        triangles: &'a [[u32; 3]],
+    ) -> Result<Self, ShadowError> {
+        let LightSource::Point { position, range } = input.light else {
+            return Err(ShadowError::UnservedLight {
+                technique: technique.key(),
+                light: input.light.kind(),
+                serving: Technique::DIRECTED_LIGHT_TECHNIQUES,
+            });
+        };
+        let eye = input.eye.pose;
+        Ok(Self {
+            technique,
+            position,
+            range,
+            body: focus_polyhedron(input)?,
+            gamma: shadowlab_hull::light_view_angle(
+                eye.forward(),
+                input.light.toward_from(eye.eye()),
+            )?,
+            half_fov: view_model(input)?.1,
+            positions,
+            triangles,
+        })
+    }
+
+    /// The light's position.
+    pub(crate) fn position(&self) -> DVec3 {
+        self.position
+    }
+
+    /// `face`'s focus, its distances measured by `depth` (of a point; the far is the greatest
+    /// over the part's vertices, so `depth` must be convex) and `nearest_of` (the least depth over
+    /// a clipped triangle's polygon); `None` if the face's part of B is empty or holds no geometry
+    /// before its far end — such a face serves no visible point.
+    pub(crate) fn focus(
+        &self,
+        face: &LightFace,
+        depth: impl Fn(DVec3) -> f64,
+        nearest_of: impl Fn(&[DVec3]) -> f64 + Sync,
+    ) -> Option<FaceFocus> {
+        let part = self
+            .body
+            .intersect_planes(&face.planes(), &Tolerances::DEFAULT)?;
+        let far = part
+            .vertices()
+            .iter()
+            .map(|v| depth(*v))
+            .fold(0.0, f64::max);
+        let far = self.range.map_or(far, |range| far.min(range));
+        let nearest = nearest(&part, self.positions, self.triangles, nearest_of)?;
+        (far > 0.0 && nearest < far).then(|| FaceFocus {
+            near: nearest.max(far * MIN_NEAR_FRACTION),
+            far,
+            part,
+        })
+    }
+
+    /// The set-up of one face: its mapping, and its part of B's vertices.
+    pub(crate) fn setup(&self, mapping: ShadowMapping, focus: &FaceFocus) -> LightSetup {
+        LightSetup {
+            technique: self.technique,
+            mapping,
+            gamma: self.gamma,
+            half_fov: self.half_fov,
+            warp: None,
+            psm: None,
+            focus_body: focus.part.vertices().to_vec(),
+        }
+    }
+}
 
 /// The part of a point light's directions one of its maps serves: a face of its cube (the
 /// directions whose largest component, in absolute value, lies along the face's axis) or a
@@ -59,7 +173,7 @@ impl LightFace {
 /// `measure` taking a clipped triangle's corners (a convex polygon, never empty); `None` if no
 /// triangle reaches into `body`. Triangles outside `body`'s bounding box are skipped before
 /// clipping. The least value is the same in any order, so the parallel search is deterministic.
-pub(crate) fn nearest(
+fn nearest(
     body: &ConvexPolyhedron,
     positions: &[DVec3],
     triangles: &[[u32; 3]],

@@ -23,13 +23,10 @@
 //! further than the light's range).
 
 use glam::{DVec2, DVec3};
-use shadowlab_hull::Tolerances;
 
-use crate::cube::MIN_NEAR_FRACTION;
 use crate::error::ShadowError;
-use crate::focus::{focus_polyhedron, view_model};
-use crate::input::{LightSource, PlanInput};
-use crate::omni::{LightFace, nearest};
+use crate::input::PlanInput;
+use crate::omni::{LightFace, PointLightPlan};
 use crate::setup::{LightSetup, ShadowMapping};
 use crate::technique::Technique;
 
@@ -168,18 +165,8 @@ pub(crate) fn plan(
     positions: &[DVec3],
     triangles: &[[u32; 3]],
 ) -> Result<Vec<(LightFace, LightSetup)>, ShadowError> {
-    let LightSource::Point { position, range } = input.light else {
-        return Err(ShadowError::UnservedLight {
-            technique: Technique::DualParaboloid.key(),
-            light: input.light.kind(),
-            serving: Technique::DIRECTED_LIGHT_TECHNIQUES,
-        });
-    };
-    let body = focus_polyhedron(input)?;
-    let (_, half_fov) = view_model(input)?;
-    let e = input.eye.pose.eye();
-    let gamma =
-        shadowlab_hull::light_view_angle(input.eye.pose.forward(), input.light.toward_from(e))?;
+    let plan = PointLightPlan::new(Technique::DualParaboloid, input, positions, triangles)?;
+    let position = plan.position();
     let mut hemispheres = Vec::new();
     for (name, axis) in [("front", FRONT), ("back", -FRONT)] {
         let face = LightFace {
@@ -188,36 +175,15 @@ pub(crate) fn plan(
             axis,
             across: None,
         };
-        let Some(part) = body.intersect_planes(&face.planes(), &Tolerances::DEFAULT) else {
+        let Some(focus) = plan.focus(
+            &face,
+            |p| (p - position).length(),
+            |polygon| distance_to_polygon(position, polygon),
+        ) else {
             continue;
         };
-        let far = part
-            .vertices()
-            .iter()
-            .map(|v| (*v - position).length())
-            .fold(0.0, f64::max);
-        let far = range.map_or(far, |range| far.min(range));
-        let Some(nearest) = nearest(&part, positions, triangles, |polygon| {
-            distance_to_polygon(position, polygon)
-        }) else {
-            continue;
-        };
-        if far <= 0.0 || nearest >= far {
-            continue;
-        }
-        let near = nearest.max(far * MIN_NEAR_FRACTION);
-        hemispheres.push((
-            face,
-            LightSetup {
-                technique: Technique::DualParaboloid,
-                mapping: ShadowMapping::Paraboloid(ParaboloidMap::new(position, axis, near, far)),
-                gamma,
-                half_fov,
-                warp: None,
-                psm: None,
-                focus_body: part.vertices().to_vec(),
-            },
-        ));
+        let map = ParaboloidMap::new(position, axis, focus.near, focus.far);
+        hemispheres.push((face, plan.setup(ShadowMapping::Paraboloid(map), &focus)));
     }
     if hemispheres.is_empty() {
         return Err(ShadowError::EmptyFocusBody);

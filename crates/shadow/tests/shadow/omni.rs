@@ -138,7 +138,7 @@ fn cube_near_planes_are_the_nearest_geometry_each_face_sees() {
             let (a, b) = (mapping.projection().z_axis.z, mapping.projection().w_axis.z);
             let (near, far) = (b / (a - 1.0), b / (a + 1.0));
             assert!(
-                near > far * shadowlab_shadow::cube::MIN_NEAR_FRACTION * 1.5,
+                near > far * shadowlab_shadow::MIN_NEAR_FRACTION * 1.5,
                 "{}",
                 scene.name
             );
