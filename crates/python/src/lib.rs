@@ -27,6 +27,7 @@ fn _native(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add_function(wrap_pyfunction!(params::gmnpr_lambda_equal_error, module)?)?;
     module.add_function(wrap_pyfunction!(params::rule_lambda, module)?)?;
     module.add_function(wrap_pyfunction!(params::split_boundaries, module)?)?;
+    module.add_function(wrap_pyfunction!(params::bias_z_map, module)?)?;
     module.add_function(wrap_pyfunction!(params::vsm_lit_fraction, module)?)?;
     module.add_function(wrap_pyfunction!(curves::figure, module)?)?;
     module.add_class::<scene::Scene>()?;

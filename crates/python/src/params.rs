@@ -7,6 +7,7 @@
 use numpy::{PyArray1, PyReadonlyArray1};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
+use shadowlab_params::bias::DepthBias;
 use shadowlab_params::cad::{self, Falloff};
 use shadowlab_params::splits::SplitScheme;
 use shadowlab_params::{
@@ -334,6 +335,34 @@ pub(crate) fn split_boundaries<'py>(
         .boundaries(range, partitions)
         .map_err(|e| value_error(&e))?;
     Ok(PyArray1::from_vec(py, boundaries))
+}
+
+/// The CAD survey's eq. 1 and Table 1: the stored depth `z_map = z1 + z_bias(z1, z2)` of the depth
+/// bias `method` (`constant` with `amount` its offset, `second-depth`, `midpoint`, `dual-depth`
+/// with `amount` its cap), `z1` and `z2` the first and second surfaces' depths (`z2 = inf`: none).
+#[pyfunction]
+pub(crate) fn bias_z_map<'py>(
+    py: Python<'py>,
+    method: &str,
+    z1: PyReadonlyArray1<'py, f64>,
+    z2: PyReadonlyArray1<'py, f64>,
+    amount: PyReadonlyArray1<'py, f64>,
+) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    let bias = |amount: f64| match method {
+        "constant" => Ok(DepthBias::Constant { offset: amount }),
+        "second-depth" => Ok(DepthBias::SecondDepth),
+        "midpoint" => Ok(DepthBias::Midpoint),
+        "dual-depth" => Ok(DepthBias::DualDepth { max_bias: amount }),
+        _ => Err(()),
+    };
+    if bias(0.0).is_err() {
+        return Err(PyValueError::new_err(format!(
+            "method: unknown {method:?}; known: constant, second-depth, midpoint, dual-depth"
+        )));
+    }
+    elementwise(py, [z1, z2, amount], |[z1, z2, amount]| {
+        bias(amount).expect("the method was checked").z_map(z1, z2)
+    })
 }
 
 /// VSM (the CAD survey's eq. 2 on shifted moments): the Chebyshev upper bound on the lit fraction

@@ -46,6 +46,9 @@ def test_arguments_broadcast_as_numpy_does():
         (lambda: params.rule_lambda("nope", 1.0, 100.0, 0.5, 0.5), "rule"),
         (lambda: params.cad_n_prime(1.0, 100.0, 0.5, 0.5, falloff="nope"), "falloff"),
         (lambda: params.split_boundaries("uniform", 1.0, 100.0, 0), "partitions"),
+        (lambda: params.bias_z_map("midpoint", 0.5, 0.25), "z2"),
+        (lambda: params.bias_z_map("dual-depth", 0.25, 0.75, -1.0), "max_bias"),
+        (lambda: params.bias_z_map("slope", 0.25, 0.75), "method"),
     ],
 )
 def test_a_bad_value_raises_value_error_naming_the_parameter(call, name):
@@ -117,3 +120,12 @@ def test_vsm_is_a_fraction_and_lit_in_front(mean, variance, t):
     assert 0.0 <= lit <= 1.0
     if t <= mean:
         assert lit == 1.0
+
+
+def test_the_depth_biases_of_table_1():
+    z1, z2 = 0.25, 0.75
+    assert params.bias_z_map("constant", z1, z2, 0.01) == pytest.approx(0.26)
+    assert params.bias_z_map("second-depth", z1, z2) == z2
+    assert params.bias_z_map("midpoint", z1, z2) == 0.5
+    assert params.bias_z_map("dual-depth", z1, z2, 0.125) == 0.375
+    assert params.bias_z_map("midpoint", z1, np.inf) == np.inf

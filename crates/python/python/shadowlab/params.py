@@ -18,6 +18,7 @@ import numpy.typing as npt
 from . import _native
 
 __all__ = [
+    "bias_z_map",
     "cad_m_z",
     "cad_n_prime",
     "gmnpr_error",
@@ -121,6 +122,13 @@ def split_boundaries(scheme: str, near: float, far: float, partitions: int, *, w
     return _native.split_boundaries(
         scheme, float(near), float(far), int(partitions), weight=float(weight), delta=float(delta), gamma=float(gamma)
     )
+
+
+def bias_z_map(method: str, z1: ArrayLike, z2: ArrayLike, amount: ArrayLike = 0.0) -> F64:
+    """The CAD survey's eq. 1 and Table 1: z_map = z1 + z_bias(z1, z2) for the depth bias
+    ``method`` — ``constant`` (``amount`` its offset), ``second-depth``, ``midpoint``, ``dual-depth``
+    (``amount`` its cap) — of the first and second surfaces' depths (``z2 = inf``: none behind)."""
+    return _call(lambda *a: _native.bias_z_map(method, *a), z1, z2, amount)
 
 
 def vsm_lit_fraction(mean: ArrayLike, variance: ArrayLike, t: ArrayLike, min_variance: ArrayLike = 1e-6) -> F64:
