@@ -46,6 +46,22 @@ fn elementwise<'py, const N: usize>(
     Ok(PyArray1::from_vec(py, values))
 }
 
+/// A `#[pyfunction]` over equally long 1-D arrays, each element of the result `body` of the
+/// arguments' elements ([`elementwise`]).
+macro_rules! elementwise_fn {
+    ($(#[$meta:meta])* $name:ident($($arg:ident),+) => $body:expr) => {
+        $(#[$meta])*
+        #[pyfunction]
+        pub(crate) fn $name<'py>(
+            py: Python<'py>,
+            $($arg: PyReadonlyArray1<'py, f64>),+
+        ) -> PyResult<Bound<'py, PyArray1<f64>>> {
+            // Each argument's name is its array's outside the closure and its element inside.
+            elementwise(py, [$($arg),+], |[$($arg),+]| $body)
+        }
+    };
+}
+
 /// The 2-D view-frustum model of CAD and GMNPR: depths `near`, `far`, half the field of view
 /// `half_fov` (radians).
 fn model(near: f64, far: f64, half_fov: f64) -> Result<FrustumModel, ParamError> {
@@ -55,72 +71,42 @@ fn model(near: f64, far: f64, half_fov: f64) -> Result<FrustumModel, ParamError>
     ))
 }
 
-/// LiSPSM eq. 3 (formulas.md §2.3): `dp/ds` at eye depth `z` for the near distance `n`.
-#[pyfunction]
-pub(crate) fn lispsm_dp_ds<'py>(
-    py: Python<'py>,
-    near: PyReadonlyArray1<'py, f64>,
-    far: PyReadonlyArray1<'py, f64>,
-    n: PyReadonlyArray1<'py, f64>,
-    z: PyReadonlyArray1<'py, f64>,
-) -> PyResult<Bound<'py, PyArray1<f64>>> {
-    elementwise(py, [near, far, n, z], |[near, far, n, z]| {
+elementwise_fn! {
+    /// LiSPSM eq. 3 (formulas.md §2.3): `dp/ds` at eye depth `z` for the near distance `n`.
+    lispsm_dp_ds(near, far, n, z) => {
         lispsm::dp_ds(DepthRange::new(near, far)?, n, z)
-    })
+    }
 }
 
-/// LiSPSM §4.4: `n_opt = n + √(f n)` (the parameter at γ = 90°).
-#[pyfunction]
-pub(crate) fn lispsm_n_opt<'py>(
-    py: Python<'py>,
-    near: PyReadonlyArray1<'py, f64>,
-    far: PyReadonlyArray1<'py, f64>,
-) -> PyResult<Bound<'py, PyArray1<f64>>> {
-    elementwise(py, [near, far], |[near, far]| {
+elementwise_fn! {
+    /// LiSPSM §4.4: `n_opt = n + √(f n)` (the parameter at γ = 90°).
+    lispsm_n_opt(near, far) => {
         Ok(lispsm::n_opt(DepthRange::new(near, far)?))
-    })
+    }
 }
 
-/// LiSPSM §4.4 at any angle: `n_opt = (n + √(f n))/sin γ`.
-#[pyfunction]
-pub(crate) fn lispsm_n_opt_general<'py>(
-    py: Python<'py>,
-    near: PyReadonlyArray1<'py, f64>,
-    far: PyReadonlyArray1<'py, f64>,
-    gamma: PyReadonlyArray1<'py, f64>,
-) -> PyResult<Bound<'py, PyArray1<f64>>> {
-    elementwise(py, [near, far, gamma], |[near, far, gamma]| {
+elementwise_fn! {
+    /// LiSPSM §4.4 at any angle: `n_opt = (n + √(f n))/sin γ`.
+    lispsm_n_opt_general(near, far, gamma) => {
         Ok(lispsm::n_opt_general(
             DepthRange::new(near, far)?,
             LightAngle::from_radians(gamma)?,
         ))
-    })
+    }
 }
 
-/// LiSPSM's Δz parameter (formulas.md §2.6): `n = (z0 + √(z0 (z0 + d sin γ)))/sin γ`.
-#[pyfunction]
-pub(crate) fn lispsm_n_delta_z<'py>(
-    py: Python<'py>,
-    z0: PyReadonlyArray1<'py, f64>,
-    depth: PyReadonlyArray1<'py, f64>,
-    gamma: PyReadonlyArray1<'py, f64>,
-) -> PyResult<Bound<'py, PyArray1<f64>>> {
-    elementwise(py, [z0, depth, gamma], |[z0, depth, gamma]| {
+elementwise_fn! {
+    /// LiSPSM's Δz parameter (formulas.md §2.6): `n = (z0 + √(z0 (z0 + d sin γ)))/sin γ`.
+    lispsm_n_delta_z(z0, depth, gamma) => {
         lispsm::n_delta_z(z0, depth, LightAngle::from_radians(gamma)?)
-    })
+    }
 }
 
-/// LiSPSM eq. 3's largest `dp/ds` over `[near, far]` for the near distance `n`.
-#[pyfunction]
-pub(crate) fn lispsm_max_error<'py>(
-    py: Python<'py>,
-    near: PyReadonlyArray1<'py, f64>,
-    far: PyReadonlyArray1<'py, f64>,
-    n: PyReadonlyArray1<'py, f64>,
-) -> PyResult<Bound<'py, PyArray1<f64>>> {
-    elementwise(py, [near, far, n], |[near, far, n]| {
+elementwise_fn! {
+    /// LiSPSM eq. 3's largest `dp/ds` over `[near, far]` for the near distance `n`.
+    lispsm_max_error(near, far, n) => {
         lispsm::max_error(DepthRange::new(near, far)?, n)
-    })
+    }
 }
 
 /// CAD eq. 12: the aliasing error `m_z` along the warp axis at eye depth `z`.
@@ -183,21 +169,11 @@ pub(crate) fn cad_n_prime<'py>(
     )
 }
 
-/// GMNPR eq. 4 (CAD eq. 13): the equal-error λ, `F(λ, θ, near) = F(λ, θ, far)`, of the branch
-/// that applies at θ; below θ₀ no λ equalises the errors, and an angle there raises `ValueError`
-/// naming `gamma` (the raw value is zero or negative).
-#[pyfunction]
-pub(crate) fn gmnpr_lambda_equal_error<'py>(
-    py: Python<'py>,
-    near: PyReadonlyArray1<'py, f64>,
-    far: PyReadonlyArray1<'py, f64>,
-    half_fov: PyReadonlyArray1<'py, f64>,
-    gamma: PyReadonlyArray1<'py, f64>,
-) -> PyResult<Bound<'py, PyArray1<f64>>> {
-    elementwise(
-        py,
-        [near, far, half_fov, gamma],
-        |[near, far, half_fov, gamma]| {
+elementwise_fn! {
+    /// GMNPR eq. 4 (CAD eq. 13): the equal-error λ, `F(λ, θ, near) = F(λ, θ, far)`, of the branch
+    /// that applies at θ; below θ₀ no λ equalises the errors, and an angle there raises `ValueError`
+    /// naming `gamma` (the raw value is zero or negative).
+    gmnpr_lambda_equal_error(near, far, half_fov, gamma) => {
             let lambda = gmnpr::lambda_equal_error(
                 &model(near, far, half_fov)?,
                 LightAngle::from_radians(gamma)?,
@@ -211,56 +187,30 @@ pub(crate) fn gmnpr_lambda_equal_error<'py>(
                     requirement: "above θ₀, where an equal-error λ exists".into(),
                 })
             }
-        },
-    )
+        }
 }
 
-/// GMNPR eqs. 1–2: the normalised perspective error `F(λ, θ, z)`; `lam = inf` is the uniform map.
-#[pyfunction]
-pub(crate) fn gmnpr_error<'py>(
-    py: Python<'py>,
-    near: PyReadonlyArray1<'py, f64>,
-    far: PyReadonlyArray1<'py, f64>,
-    half_fov: PyReadonlyArray1<'py, f64>,
-    gamma: PyReadonlyArray1<'py, f64>,
-    lam: PyReadonlyArray1<'py, f64>,
-    z: PyReadonlyArray1<'py, f64>,
-) -> PyResult<Bound<'py, PyArray1<f64>>> {
-    elementwise(
-        py,
-        [near, far, half_fov, gamma, lam, z],
-        |[near, far, half_fov, gamma, lam, z]| {
+elementwise_fn! {
+    /// GMNPR eqs. 1–2: the normalised perspective error `F(λ, θ, z)`; `lam = inf` is the uniform map.
+    gmnpr_error(near, far, half_fov, gamma, lam, z) => {
             gmnpr::error(
                 &model(near, far, half_fov)?,
                 LightAngle::from_radians(gamma)?,
                 WarpParameter::from_lambda(lam)?,
                 z,
             )
-        },
-    )
+        }
 }
 
-/// GMNPR: F's largest value over `[near, far]` (F is convex in z, formulas.md §5.7).
-#[pyfunction]
-pub(crate) fn gmnpr_max_error<'py>(
-    py: Python<'py>,
-    near: PyReadonlyArray1<'py, f64>,
-    far: PyReadonlyArray1<'py, f64>,
-    half_fov: PyReadonlyArray1<'py, f64>,
-    gamma: PyReadonlyArray1<'py, f64>,
-    lam: PyReadonlyArray1<'py, f64>,
-) -> PyResult<Bound<'py, PyArray1<f64>>> {
-    elementwise(
-        py,
-        [near, far, half_fov, gamma, lam],
-        |[near, far, half_fov, gamma, lam]| {
+elementwise_fn! {
+    /// GMNPR: F's largest value over `[near, far]` (F is convex in z, formulas.md §5.7).
+    gmnpr_max_error(near, far, half_fov, gamma, lam) => {
             Ok(gmnpr::max_error(
                 &model(near, far, half_fov)?,
                 LightAngle::from_radians(gamma)?,
                 WarpParameter::from_lambda(lam)?,
             ))
-        },
-    )
+        }
 }
 
 /// The warp parameter λ a rule picks (`shadowlab_params::ParameterRule`: `uniform`, `lispsm`,
@@ -365,23 +315,12 @@ pub(crate) fn bias_z_map<'py>(
     })
 }
 
-/// VSM (the CAD survey's eq. 2 on shifted moments): the Chebyshev upper bound on the lit fraction
-/// at receiver depth `t` of depths with mean `mean` and variance `variance` (floored at
-/// `min_variance`).
-#[pyfunction]
-pub(crate) fn vsm_lit_fraction<'py>(
-    py: Python<'py>,
-    mean: PyReadonlyArray1<'py, f64>,
-    variance: PyReadonlyArray1<'py, f64>,
-    t: PyReadonlyArray1<'py, f64>,
-    min_variance: PyReadonlyArray1<'py, f64>,
-) -> PyResult<Bound<'py, PyArray1<f64>>> {
-    elementwise(
-        py,
-        [mean, variance, t, min_variance],
-        |[mean, variance, t, min_variance]| {
+elementwise_fn! {
+    /// VSM (the CAD survey's eq. 2 on shifted moments): the Chebyshev upper bound on the lit fraction
+    /// at receiver depth `t` of depths with mean `mean` and variance `variance` (floored at
+    /// `min_variance`).
+    vsm_lit_fraction(mean, variance, t, min_variance) => {
             // Moments about the mean itself: m1 = 0, m2 = the variance.
             vsm::ShiftedMoments::new(mean, 0.0, variance)?.lit_fraction(t, min_variance)
-        },
-    )
+        }
 }
