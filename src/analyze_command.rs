@@ -73,7 +73,13 @@ pub(crate) fn analyze(args: &AnalyzeArgs) -> Result<(), CliError> {
         .chain(std::iter::once(options.optimal.initial_resolution))
         .max()
         .unwrap_or(0);
-    let maps = options.partitions.iter().copied().max().unwrap_or(1) as u64;
+    let most_per_partition = options
+        .techniques
+        .iter()
+        .map(|t| t.most_maps_per_partition())
+        .max()
+        .unwrap_or(1);
+    let maps = (options.partitions.iter().copied().max().unwrap_or(1) * most_per_partition) as u64;
     // Per technique at the picture resolution, each picture raw and annotated, and the exports.
     let (width, height) = (scene.camera.width, scene.camera.height);
     let annotated = annotated_png_bound(width, height);

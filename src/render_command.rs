@@ -28,7 +28,8 @@ pub(crate) fn run(args: &RenderArgs) -> Result<(), CliError> {
             "render",
         ))
     });
-    let maps = u64::try_from(resolved.plan.partitions).unwrap_or(u64::MAX);
+    let maps = u64::try_from(resolved.plan.partitions * technique.most_maps_per_partition())
+        .unwrap_or(u64::MAX);
     let setting = Setting {
         technique,
         resolution: resolved.resolution,
@@ -46,7 +47,7 @@ pub(crate) fn run(args: &RenderArgs) -> Result<(), CliError> {
         + annotated_png_bound(width, height)
         + maps.saturating_mul(png_bound(side, side, 2 + 3) + annotated_png_bound(side, side))
         + export_bound;
-    let out = OutputDir::check(target, "--out", estimate)?;
+    // Memory before disk: a run that cannot fit in memory is refused whatever the disk holds.
     memory::check(
         &Workload::of(
             scene,
@@ -59,6 +60,7 @@ pub(crate) fn run(args: &RenderArgs) -> Result<(), CliError> {
         .exporting(args.export),
         args.memory.memory_budget,
     )?;
+    let out = OutputDir::check(target, "--out", estimate)?;
     let spinner = progress::spinner(&format!("render: {technique} {}²", resolved.resolution));
     let frame = render_frame(scene, &options);
     spinner.finish_and_clear();

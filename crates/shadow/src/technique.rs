@@ -372,6 +372,18 @@ impl Technique {
         }
     }
 
+    /// The most maps one partition of it makes: six cube faces, two paraboloid hemispheres, one
+    /// map per face of the view for the logarithmic map's face partitioning (six at most), one
+    /// otherwise — what a memory or output estimate multiplies the partitions by.
+    #[must_use]
+    pub fn most_maps_per_partition(self) -> usize {
+        match self {
+            Self::Cube | Self::Logarithmic(LogarithmicChoice::Faces) => 6,
+            Self::DualParaboloid => 2,
+            _ => 1,
+        }
+    }
+
     /// The error of the technique keyed `technique` given a point light.
     pub(crate) fn unserved_point_light(technique: &'static str) -> ShadowError {
         ShadowError::UnservedLight {
