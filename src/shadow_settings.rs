@@ -9,7 +9,7 @@ use shadowlab_analysis::study::default_techniques;
 use shadowlab_raster::{DepthFormat, MAX_TARGET_SIZE};
 use shadowlab_scene::scene_file::MAX_IMAGE_SIDE;
 use shadowlab_scene::{
-    DEFAULT_SCENE, Scene, SceneLight, ShadowSettings, builtin_scene, is_gltf_path, load_gltf_scene,
+    DEFAULT_SCENE, Scene, ShadowSettings, builtin_scene, is_gltf_path, load_gltf_scene,
     load_scene_with_warnings,
 };
 use shadowlab_shadow::optimal::OptimalOptions;
@@ -334,22 +334,15 @@ fn scene_label(arg: &SceneArg) -> String {
     }
 }
 
-/// The technique of a scene that names none: the cube map where every light is a point light
-/// (what engines ship for them), LiSPSM (the paper's parameter) otherwise.
+/// The technique of a scene that names none: the first of the study commands' defaults for its
+/// lights ([`default_techniques`] with LiSPSM for directional and spot lights) — LiSPSM (the paper's
+/// parameter), the cube map where every light is a point light (what engines ship for them), PSM
+/// where point lights mix with others (the one technique that serves both).
 fn default_technique(scene: &Scene) -> Technique {
-    if only_point_lights(scene) {
-        Technique::Cube
-    } else {
-        Technique::Lispsm(WarpChoice::PAPER)
-    }
-}
-
-/// Whether every light of `scene` is a point light.
-fn only_point_lights(scene: &Scene) -> bool {
-    scene
-        .lights
-        .iter()
-        .all(|light| matches!(light, SceneLight::Point { .. }))
+    default_techniques(scene, "lispsm")
+        .first()
+        .copied()
+        .unwrap_or(Technique::Lispsm(WarpChoice::PAPER))
 }
 
 /// The techniques a study command measures: those given (`--techniques`), else its default for
