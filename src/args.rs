@@ -164,7 +164,8 @@ pub(crate) struct AnalyzeArgs {
     pub(crate) split_scheme: Option<Splits>,
     /// Filters, comma-separated: nearest, pcf:K, disk:TAPS;RADIUS (use ; between a filter's
     /// numbers here), vsm:K, and the filterable maps esm:K;C, evsm2:K;C, evsm4:K;C+;C-,
-    /// msm:K;ALPHA.
+    /// msm:K;ALPHA. The filterable maps (vsm to msm) take knobs after @: the kernel @box (default)
+    /// or @gauss, the moments' storage @exact (default), @f32 or @f16, e.g. evsm4:5;40;5@gauss@f16.
     #[arg(
         long,
         value_delimiter = ',',
@@ -255,7 +256,9 @@ pub(crate) struct StudyView {
     pub(crate) eye_size: Option<(u32, u32)>,
     /// The lookup filter of every map (as render --filter): nearest, pcf:K, disk:TAPS,RADIUS[,SEED],
     /// vsm:K[,MIN_VARIANCE]; the filterable maps esm:K,C, evsm2:K,C[,MIN_VARIANCE],
-    /// evsm4:K,C+,C-[,MIN_VARIANCE], msm:K,ALPHA.
+    /// evsm4:K,C+,C-[,MIN_VARIANCE], msm:K,ALPHA. The filterable maps (vsm to msm) take knobs
+    /// after @: the kernel @box (default) or @gauss, the moments' storage @exact (default), @f32 or
+    /// @f16, e.g. evsm4:5,40,5@gauss@f16.
     #[arg(long, default_value = "nearest", value_parser = filter_spec, allow_hyphen_values = true)]
     pub(crate) filter: Filter,
 }
@@ -425,7 +428,9 @@ pub(crate) struct ShadowArgs {
     pub(crate) bias: Option<Bias>,
     /// Filter: nearest, pcf:K, disk:TAPS,RADIUS or disk:TAPS,RADIUS,SEED, vsm:K or
     /// vsm:K,MIN_VARIANCE; the filterable maps esm:K,C, evsm2:K,C[,MIN_VARIANCE],
-    /// evsm4:K,C+,C-[,MIN_VARIANCE], msm:K,ALPHA. Default: nearest.
+    /// evsm4:K,C+,C-[,MIN_VARIANCE], msm:K,ALPHA; the filterable maps (vsm to msm) take knobs
+    /// after @: the kernel @box (default) or @gauss, the moments' storage @exact (default), @f32 or
+    /// @f16, e.g. evsm4:5,40,5@gauss@f16. Default: nearest.
     #[arg(long, allow_hyphen_values = true, value_parser = filter_spec)]
     pub(crate) filter: Option<Filter>,
     /// Depth format of the maps: f32, reversed-f32, unorm24, unorm16. Default: f32.

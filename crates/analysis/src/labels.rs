@@ -20,19 +20,31 @@ pub fn filter_label(filter: &Filter) -> String {
         Filter::Nearest => "nearest".into(),
         Filter::Pcf { size } => format!("pcf:{size}"),
         Filter::Disk { taps, radius, seed } => format!("disk:{taps},{radius},{seed}"),
-        Filter::Vsm { size, min_variance } => format!("vsm:{size},{min_variance}"),
-        Filter::Moments { size, method } => match method {
-            MomentMethod::Esm { exponent } => format!("esm:{size},{exponent}"),
-            MomentMethod::Evsm2 {
-                exponent,
-                min_variance,
-            } => format!("evsm2:{size},{exponent},{min_variance}"),
-            MomentMethod::Evsm4 {
-                positive,
-                negative,
-                min_variance,
-            } => format!("evsm4:{size},{positive},{negative},{min_variance}"),
-            MomentMethod::Msm { alpha } => format!("msm:{size},{alpha}"),
-        },
+        Filter::Vsm {
+            size,
+            min_variance,
+            prefilter,
+        } => format!("vsm:{size},{min_variance}{prefilter}"),
+        Filter::Moments {
+            size,
+            method,
+            prefilter,
+        } => {
+            let numbers = match method {
+                MomentMethod::Esm { exponent } => format!("esm:{size},{exponent}"),
+                MomentMethod::Evsm2 {
+                    exponent,
+                    min_variance,
+                } => format!("evsm2:{size},{exponent},{min_variance}"),
+                MomentMethod::Evsm4 {
+                    positive,
+                    negative,
+                    min_variance,
+                } => format!("evsm4:{size},{positive},{negative},{min_variance}"),
+                MomentMethod::Msm { alpha } => format!("msm:{size},{alpha}"),
+            };
+            // The prefilter's knobs after `@`, the defaults (box, exact) left out as before.
+            format!("{numbers}{prefilter}")
+        }
     }
 }

@@ -3,7 +3,7 @@
 //! the nearest-texel lookup of the same map, with the same bias, shadows it — and its
 //! **over-darkening** — pairs it shadows where the point is lit and the nearest lookup lights it;
 //! the leaks' **extent**, each leaking pixel's distance to the nearest edge of the true shadow; and
-//! the **memory** the method stores per texel.
+//! the **memory** the method stores per texel, at its storage's precision.
 //!
 //! A pair is judged as [`crate::classify`] judges it (visible, inside the light's cone; lit at a
 //! fraction of at least [`LIT_THRESHOLD`]), so a leak here is also counted in the combination's
@@ -21,20 +21,37 @@
 
 use rayon::prelude::*;
 use shadowlab_params::FilterableMethod;
-use shadowlab_shadow::Filter;
+use shadowlab_shadow::{Filter, Storage};
 
 use crate::aliasing::{AliasingStats, par_stats};
 use crate::truth::{LIT_THRESHOLD, Truth};
 
-/// Bytes per stored moment: a 32-bit float channel, as the engines store VSM, EVSM and MSM at
-/// full precision (the methods' 16-bit variants halve it; shadowlab forms the moments in f64).
-pub const BYTES_PER_MOMENT: u32 = 4;
+/// A filterable method and where its map holds its moments: what a texel of it stores.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct StoredMethod {
+    /// The method.
+    pub method: FilterableMethod,
+    /// The moments' storage ([`Storage::Exact`] is reported as 32-bit moments).
+    pub storage: Storage,
+}
+
+impl StoredMethod {
+    /// Bytes per texel: the method's moments times the storage's bytes per moment (2 for f16, 4 for
+    /// f32 and for exact moments).
+    #[must_use]
+    pub fn bytes_per_texel(self) -> u32 {
+        u32::try_from(self.method.moments_per_texel()).unwrap_or(u32::MAX)
+            * self.storage.bytes_per_moment()
+    }
+}
 
 /// A filterable map's errors against the nearest lookup of the same map (module docs).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FilterLeaks {
     /// The method.
     pub method: FilterableMethod,
+    /// Where the method's moments are held.
+    pub storage: Storage,
     /// Judged pairs the filter lights, the truth shadows and the nearest lookup shadows.
     pub leaks: u64,
     /// Judged pairs the filter shadows, the truth lights and the nearest lookup lights.
@@ -42,21 +59,29 @@ pub struct FilterLeaks {
     /// The leaking pixels' distances to the nearest true shadow edge of their light, in pixels
     /// (max, 99th percentile, mean; every leaking pair counts once).
     pub extent: AliasingStats,
-    /// Bytes the method stores per texel: its moments times [`BYTES_PER_MOMENT`].
+    /// Bytes the method stores per texel ([`StoredMethod::bytes_per_texel`]).
     pub bytes_per_texel: u32,
 }
 
-/// The filterable method a filter reads with, if it is one.
+/// The filterable method a filter reads with and the storage of its moments, if it is one.
 #[must_use]
-pub fn filterable_method(filter: &Filter) -> Option<FilterableMethod> {
+pub fn filterable_method(filter: &Filter) -> Option<StoredMethod> {
     match filter {
-        Filter::Vsm { .. } => Some(FilterableMethod::Vsm),
-        Filter::Moments { method, .. } => Some(method.method()),
+        Filter::Vsm { prefilter, .. } => Some(StoredMethod {
+            method: FilterableMethod::Vsm,
+            storage: prefilter.storage,
+        }),
+        Filter::Moments {
+            method, prefilter, ..
+        } => Some(StoredMethod {
+            method: method.method(),
+            storage: prefilter.storage,
+        }),
         Filter::Nearest | Filter::Pcf { .. } | Filter::Disk { .. } => None,
     }
 }
 
-/// The leaks of `method`'s lookups `filtered` against the `nearest` lookups of the same maps (each
+/// The leaks of `stored`'s lookups `filtered` against the `nearest` lookups of the same maps (each
 /// per light, per pixel, as [`shadowlab_shadow::Shadows::lit`]) and `truth`, on an image `width`
 /// pixels wide.
 ///
@@ -66,7 +91,7 @@ pub fn filterable_method(filter: &Filter) -> Option<FilterableMethod> {
 pub fn filter_leaks(
     truth: &Truth,
     width: usize,
-    method: FilterableMethod,
+    stored: StoredMethod,
     (filtered, nearest): (&[Vec<f64>], &[Vec<f64>]),
 ) -> FilterLeaks {
     assert!(
@@ -111,13 +136,13 @@ pub fn filter_leaks(
         extents.extend(light_extents);
     }
     FilterLeaks {
-        method,
+        method: stored.method,
+        storage: stored.storage,
         leaks,
         over_darkening,
         // The statistics depend on the multiset of distances only, whatever order they came in.
         extent: par_stats(extents.into_par_iter()),
-        bytes_per_texel: u32::try_from(method.moments_per_texel()).unwrap_or(u32::MAX)
-            * BYTES_PER_MOMENT,
+        bytes_per_texel: stored.bytes_per_texel(),
     }
 }
 
@@ -277,11 +302,33 @@ mod tests {
         // and shadows pixel 3 (nearest right: over-darkening).
         let filtered = [vec![0.9, 0.6, 1.0, 0.1]];
         let nearest = [vec![0.0, 1.0, 1.0, 1.0]];
-        let leaks = filter_leaks(&truth, 4, FilterableMethod::Msm, (&filtered, &nearest));
+        let msm = StoredMethod {
+            method: FilterableMethod::Msm,
+            storage: Storage::Exact,
+        };
+        let leaks = filter_leaks(&truth, 4, msm, (&filtered, &nearest));
         assert_eq!((leaks.leaks, leaks.over_darkening), (1, 1));
         // Pixel 0 is one pixel from the edge pixel 1 (whose neighbour 2 is lit).
         assert_eq!(leaks.extent.max, 1.0);
         assert_eq!(leaks.extent.count, 1);
         assert_eq!(leaks.bytes_per_texel, 16);
+    }
+
+    #[test]
+    fn bytes_per_texel_follow_the_storage() {
+        let bytes = |spec: &str| {
+            filterable_method(&Filter::parse(spec).unwrap())
+                .expect("a filterable map")
+                .bytes_per_texel()
+        };
+        // Exact moments are reported as 32-bit ones, as before the storage knob.
+        assert_eq!(bytes("vsm:5"), 8);
+        assert_eq!(bytes("vsm:5@f32"), 8);
+        assert_eq!(bytes("vsm:5@gauss@f16"), 4);
+        assert_eq!(bytes("esm:3,80@f16"), 2);
+        assert_eq!(bytes("evsm4:3,11.08,11.08"), 16);
+        assert_eq!(bytes("evsm4:3,11.08,11.08@f16"), 8);
+        assert_eq!(bytes("msm:3,6e-5@f16"), 8);
+        assert_eq!(filterable_method(&Filter::parse("pcf:3").unwrap()), None);
     }
 }

@@ -295,9 +295,10 @@ fn document(study: &Study, leaks_drawn: bool) -> Vec<Block> {
                 &format!(
                     "The filter's own errors, against the nearest lookup of the same map: light \
                      leaks / over-darkening; the leaks' distance to the true shadow's edge, \
-                     pixels: 99th percentile / max ({}, {} bytes per texel at 32-bit moments)",
+                     pixels: 99th percentile / max ({}, {} bytes per texel at {}-bit moments)",
                     leaks.method.key(),
-                    leaks.bytes_per_texel
+                    leaks.bytes_per_texel,
+                    8 * leaks.storage.bytes_per_moment()
                 ),
                 &|o| {
                     o.leaks.map_or("—".into(), |l| {

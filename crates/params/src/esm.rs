@@ -38,6 +38,12 @@
 //! depth (`d̄ = d₀`). This is the log-space filtering of Salvi's ESM variant (ShaderX⁶, 2008),
 //! done exactly. Stored values about another reference `r` (`E[exp(c·(d − r))]`, the form a GPU
 //! stores with `r = 0`) are accepted by [`ExponentialMoment::new`].
+//!
+//! # Storage: the paper's raw moment
+//! A map whose moment a texture stores (`crate::storage`) holds what Annen et al.'s shadow pass
+//! writes, `exp(c·d)` about depth 0 ([`ExponentialMoment::texel_moments`]), not Salvi's log-space
+//! form, and reads it back with [`ExponentialMoment::from_raw_moments`]. It overflows binary16 for
+//! `c·d > 11.09` and binary32 for `c·d > 88.72`; an overflowed texel reads lit.
 
 use crate::depth_samples::{Samples, unit_depth};
 use crate::error::ParamError;
@@ -123,6 +129,28 @@ impl ExponentialMoment {
             exponent,
             mean_depth: (pivot + (pivot_log_weight + sum.ln()) / exponent).clamp(low, high),
         })
+    }
+
+    /// The raw moment one texel of depth `depth` stores, `[exp(c·d)]`: the occluder term as Annen et
+    /// al. store it (about depth 0, not in log space; `crate::storage`), before the format rounds
+    /// it. It overflows binary16 once `c·d > ln 65504 ≈ 11.09` and binary32 once `c·d > 88.72`.
+    /// No validation.
+    #[must_use]
+    pub fn texel_moments(exponent: f64, depth: f64) -> [f64; 1] {
+        [(exponent * depth).exp()]
+    }
+
+    /// From a blurred raw moment `[E[exp(c·d)]]` as a texture holds it (`crate::storage`): the
+    /// moment about reference 0 ([`Self::new`]), or `None` when it is `+∞` (it overflowed its
+    /// format: no exponential mean is recorded, and the texel reads lit — `crate::storage`,
+    /// *overflow reads lit*). `Err` names `exponent` or `moment`
+    /// (NaN, `−∞`, or not above 0).
+    pub fn from_raw_moments(exponent: f64, [moment]: [f64; 1]) -> Result<Option<Self>, ParamError> {
+        let exponent = check_exponent(exponent)?;
+        if moment == f64::INFINITY {
+            return Ok(None);
+        }
+        Self::new(exponent, 0.0, moment).map(Some)
     }
 
     /// The exponent `c`.

@@ -60,8 +60,21 @@
 //! `nw = −1/pw`). Because of the scale invariance above that is the same bound as ours with
 //! `c₊ = c₋ = 2·c_F`: Filament's default `c_F = 5.54`, the fp16 limit (42 for fp32;
 //! `filament/include/filament/Options.h`, `VsmShadowOptions::exponent`), is `c = 11.08` here (84
-//! for fp32). Its centring at mid-depth only changes what overflows in 16- and 32-bit storage,
-//! which this module, in f64 and scaled about `r`, does not model.
+//! for fp32). Its centring at mid-depth only changes what overflows in 16- and 32-bit storage.
+//!
+//! # Storage: raw warps about ½ (named choice: *centred raw warps*)
+//! The moments above are formed in f64 from the depths. A map whose moments a texture stores
+//! (`crate::storage`) holds what the engines' shadow pass writes: the raw warps centred on mid-depth,
+//! `w₊ = exp(c₊·(d − ½))`, `w₋ = −exp(−c₋·(d − ½))`, and their squares
+//! ([`WarpedMoments::texel_moments`]) — Filament's and MJP's `WarpDepth` (TheRealMJP/Shadows,
+//! `Shadows/VSM.hlsl`: `depth = 2.0f * depth - 1.0f`, then `exp(c_F·depth)`, `−exp(−c_F·depth)`),
+//! with `c = 2·c_F`. The largest stored value is `w² = exp(c)` (the positive warp at `d = 1`, the
+//! negative one at `d = 0`), so binary16 holds exponents up to `ln 65504 ≈ 11.09` here (MJP's and
+//! Filament's 5.54 in theirs) and binary32 up to 88.7 (MJP's 42, 84 here, keeps a margin); above,
+//! the squares of the depths farthest from ½ overflow to `∞` and those texels' warp reads lit
+//! (`crate::storage`, *overflow reads lit*). Lauritzen & McCool's uncentred `exp(c·d)` would
+//! overflow at half the exponent. [`WarpedMoments::from_raw_moments`]
+//! reads the blurred raw moments back as moments about `r = ½`.
 
 use crate::depth_samples::{Samples, unit_depth};
 use crate::error::ParamError;
@@ -69,6 +82,10 @@ use crate::error::ParamError;
 /// The largest exponent accepted: `⌊ln(f64::MAX)/2⌋ = 354`. With depths and reference in `[0, 1]`,
 /// `|c·(d − r)| ≤ c`, so `u² ≤ exp(2c) ≤ exp(708)` stays finite.
 pub const MAX_EXPONENT: f64 = 354.0;
+
+/// The depth the raw warps a texel stores are centred on: `w₊ = exp(c·(d − ½))`,
+/// `w₋ = −exp(−c·(d − ½))` (module documentation, *Storage*).
+pub const RAW_REFERENCE: f64 = 0.5;
 
 /// Which of the two exponential warps.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -88,6 +105,25 @@ impl Warp {
         match self {
             Self::Positive => x.exp_m1(),
             Self::Negative => -(-x).exp_m1(),
+        }
+    }
+
+    /// The raw warped depth a texel stores (module documentation, *Storage*):
+    /// `w₊ = exp(c·(d − ½))`, `w₋ = −exp(−c·(d − ½))`. No validation.
+    #[must_use]
+    pub fn raw(self, exponent: f64, depth: f64) -> f64 {
+        let x = exponent * (depth - RAW_REFERENCE);
+        match self {
+            Self::Positive => x.exp(),
+            Self::Negative => -(-x).exp(),
+        }
+    }
+
+    /// The raw warp at [`RAW_REFERENCE`]: `w₊(½) = 1`, `w₋(½) = −1`.
+    const fn raw_at_reference(self) -> f64 {
+        match self {
+            Self::Positive => 1.0,
+            Self::Negative => -1.0,
         }
     }
 }
@@ -182,6 +218,45 @@ impl WarpedMoments {
         let m1 = samples.mean(u);
         let m2 = samples.mean(|d| u(d) * u(d));
         Self::new(warp, exponent, reference, m1, m2)
+    }
+
+    /// The raw moments one texel of depth `depth` stores for this warp, `[w, w²]` with `w` the raw
+    /// warp about ½ ([`Warp::raw`]; module documentation, *Storage*), before the format rounds
+    /// them. No validation.
+    #[must_use]
+    pub fn texel_moments(warp: Warp, exponent: f64, depth: f64) -> [f64; 2] {
+        let w = warp.raw(exponent, depth);
+        [w, w * w]
+    }
+
+    /// From blurred raw moments `[E[w], E[w²]]` of `warp` about ½ as a texture holds them
+    /// (`crate::storage`), or `None` when either is infinite (it overflowed its format: the warp
+    /// carries no bound and reads lit — `crate::storage`, *overflow reads lit*). The raw moments
+    /// become the scaled, shifted ones about `r = ½` as the module documentation relates them
+    /// (`u = w − w(½)`, `w(½) = ±1`): `M1 = E[w] ∓ 1`, `M2 = E[w²] ∓ 2·E[w] + 1`, the latter kept at
+    /// least 0 (rounding can push it below; the variance `M2 − M1² = E[w²] − E[w]²` is clamped at 0
+    /// anyway). `Err` names `exponent`, `mean` (NaN) or `m1` (a mean of the wrong sign).
+    pub fn from_raw_moments(
+        warp: Warp,
+        exponent: f64,
+        [mean, mean_square]: [f64; 2],
+    ) -> Result<Option<Self>, ParamError> {
+        check_exponent(exponent)?;
+        for value in [mean, mean_square] {
+            if value.is_nan() {
+                return Err(ParamError::NotFinite {
+                    name: "mean",
+                    value,
+                });
+            }
+        }
+        if mean.is_infinite() || mean_square.is_infinite() {
+            return Ok(None);
+        }
+        let at = warp.raw_at_reference();
+        let m1 = mean - at;
+        let m2 = (mean_square - 2.0 * at * mean + 1.0).max(0.0);
+        Self::new(warp, exponent, RAW_REFERENCE, m1, m2).map(Some)
     }
 
     /// Which warp.
@@ -501,6 +576,41 @@ mod tests {
                 assert!((a - b).abs() < 1e-5, "t = {t}: VSM {a}, EVSM2 {b}");
             }
         }
+    }
+
+    #[test]
+    fn raw_moments_about_a_half_are_the_shifted_moments_about_a_half() {
+        let depths = [0.3, 0.32, 0.5, 0.55, 0.7];
+        for warp in [Warp::Positive, Warp::Negative] {
+            let shifted = WarpedMoments::from_depths(warp, 11.08, RAW_REFERENCE, &depths).unwrap();
+            let texels: Vec<[f64; 2]> = depths
+                .iter()
+                .map(|&d| WarpedMoments::texel_moments(warp, 11.08, d))
+                .collect();
+            let mean = |k: usize| texels.iter().map(|t| t[k]).sum::<f64>() / 5.0;
+            let raw = WarpedMoments::from_raw_moments(warp, 11.08, [mean(0), mean(1)])
+                .unwrap()
+                .expect("finite");
+            assert!((raw.m1() - shifted.m1()).abs() < 1e-14, "{warp:?}");
+            assert!(
+                (raw.variance() - shifted.variance()).abs() < 1e-13,
+                "{warp:?}"
+            );
+            for t in [0.2, 0.5, 0.6, 0.75] {
+                let (a, b) = (
+                    raw.lit_fraction(t, 1e-6).unwrap(),
+                    shifted.lit_fraction(t, 1e-6).unwrap(),
+                );
+                assert!((a - b).abs() < 1e-12, "{warp:?} at {t}: {a} {b}");
+            }
+        }
+        // An overflowed moment carries no bound.
+        let overflowed = [f64::INFINITY, f64::INFINITY];
+        assert!(
+            WarpedMoments::from_raw_moments(Warp::Positive, 12.0, overflowed)
+                .unwrap()
+                .is_none()
+        );
     }
 
     #[test]

@@ -29,6 +29,13 @@
 //! `from_weighted_depths` takes one non-negative weight per depth (a filter kernel's taps); the
 //! moments are the weighted means `Σ wᵢ f(dᵢ) / Σ wᵢ`. `from_depths` gives every depth the same
 //! weight.
+//!
+//! # Storage
+//! `from_depths` and `from_weighted_depths` form the moments in f64, about a reference near the
+//! depths where the method takes one: what a map that keeps its moments exactly reads. What an
+//! engine stores instead — per texel the raw moments `texel_moments` of its depth, rounded to a 32-
+//! or 16-bit float format, blurred in that format, read back by `from_raw_moments` — is modelled by
+//! [`crate::storage`].
 
 /// A filterable shadow-map method, without its parameters.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -69,7 +76,7 @@ impl FilterableMethod {
 
     /// The number of scalar moments each texel stores: 1 for ESM, 2 for VSM and EVSM2, 4 for EVSM4
     /// and MSM. Bytes per texel are this times the bytes of the storage format (2 for 16-bit, 4 for
-    /// 32-bit channels).
+    /// 32-bit channels: [`crate::storage::MomentFormat::bytes`]).
     #[must_use]
     pub const fn moments_per_texel(self) -> usize {
         match self {

@@ -10,6 +10,7 @@
 //! | [`evsm`] | EVSM Lauritzen & McCool, *Layered Variance Shadow Maps*, Graphics Interface 2008 (the exponential warps), with VSM's bound |
 //! | [`msm`] | MSM Peters & Klein, *Moment Shadow Mapping*, I3D 2015, doi 10.1145/2699276.2699277 (Hamburger 4MSM, depths in `[0, 1]`) |
 //! | [`filterable`] | the filterable maps side by side (VSM, ESM, EVSM2, EVSM4, MSM): memory per texel, shared depth samples |
+//! | [`storage`] | their moments in 32- and 16-bit float textures: IEEE rounding, the blur pass in f32, overflow |
 //! | [`model`] | the 2-D view-frustum model shared by CAD eqs. 10–12 and GMNPR eq. 2 |
 //! | [`rule`] | all parameter choices side by side, and the true minimax of the model |
 //!
@@ -70,6 +71,7 @@ pub mod model;
 pub mod msm;
 pub mod rule;
 pub mod splits;
+pub mod storage;
 pub mod vsm;
 
 pub use domain::{DepthRange, HalfFov, LightAngle, WarpParameter};

@@ -73,11 +73,21 @@
 //!   depth interval in centred coordinates), bounds every such distribution satisfies, so the
 //!   result is always finite and in `[0, 1]`.
 //!
+//! # Storage (named choice: *plain float moments*)
+//! [`MsmMoments::from_depths`] forms the moments in f64. A map whose moments a texture stores
+//! (`crate::storage`) holds the raw power moments `d, d², d³, d⁴` ([`MsmMoments::texel_moments`]),
+//! each rounded to the float format, and reads them back with [`MsmMoments::from_raw_moments`]:
+//! what the paper stores at 32 bits per moment, and for 16-bit *float* storage plain half floats of
+//! the same moments. That is **not the paper's 16-bit scheme**: Peters & Klein store 16 bits per
+//! moment as fixed point after an optimised affine change of basis of the four moments (the
+//! authors' transform is in public code, e.g. TheRealMJP/Shadows `Shadows/MSM.hlsl`
+//! `GetOptimizedMoments`, which writes it to an `R16G16B16A16_UNORM` target, 32-bit float maps
+//! keeping the plain moments). A fixed-point format is not among the float formats modelled, so
+//! neither is that transform. `α` remains the knob that absorbs storage rounding.
+//!
 //! # Left out
-//! The paper's optimised 16-bit quantisation (an affine change of basis of the four moments before
-//! storage) is a storage detail: here the moments are f64. `α` remains the knob that absorbs
-//! storage rounding. Peters & Klein's depth bias (subtracting a constant from `z_f`) is the
-//! caller's, as for every other lookup.
+//! Peters & Klein's depth bias (subtracting a constant from `z_f`) is the caller's, as for every
+//! other lookup.
 
 use crate::depth_samples::{Samples, unit_depth};
 use crate::error::ParamError;
@@ -151,6 +161,27 @@ impl MsmMoments {
             samples.mean(|d| (y(d) * y(d)) * (y(d) * y(d))),
         ];
         Self::new(reference, b)
+    }
+
+    /// The raw moments one texel of depth `depth` stores, `[d, d², d³, d⁴]` (module documentation,
+    /// *Storage*; the powers as MJP's shader forms them, `d²·d` and `d²·d²`), before the format
+    /// rounds them. No validation.
+    #[must_use]
+    pub fn texel_moments(depth: f64) -> [f64; 4] {
+        let square = depth * depth;
+        [depth, square, square * depth, square * square]
+    }
+
+    /// From blurred raw power moments `[E[d], E[d²], E[d³], E[d⁴]]` as a texture holds them
+    /// (`crate::storage`): the moments about reference 0, each clamped to `[0, 1]` first (where the
+    /// raw moments of depths in `[0, 1]` lie; a blur's f32 weights can sum to a few ulps above 1,
+    /// and its rounding can leave a mean an ulp outside). They never overflow. `Err` names `moments`
+    /// (a value not finite).
+    pub fn from_raw_moments(moments: [f64; 4]) -> Result<Self, ParamError> {
+        for b in moments {
+            ParamError::finite("moments", b)?;
+        }
+        Self::new(0.0, moments.map(|b| b.clamp(0.0, 1.0)))
     }
 
     /// The reference depth `r`.
@@ -292,6 +323,25 @@ mod tests {
         for (a, b) in shifted.iter().zip(raw) {
             assert!((a - b).abs() < 1e-15, "{a} {b}");
         }
+    }
+
+    #[test]
+    fn raw_moments_as_stored_are_clamped_to_their_range() {
+        let depths = [0.1, 0.4, 0.45, 0.9];
+        let raw = MsmMoments::from_depths(0.0, &depths).unwrap().moments();
+        assert_eq!(MsmMoments::from_raw_moments(raw).unwrap().moments(), raw);
+        let texel = MsmMoments::texel_moments(0.5);
+        assert_eq!(texel, [0.5, 0.25, 0.125, 0.0625]);
+        // A blur's weights summing an ulp above 1 leave a mean of depth 1 just above 1.
+        let over = MsmMoments::from_raw_moments([1.0 + 1e-7; 4]).unwrap();
+        assert_eq!(over.moments(), [1.0; 4]);
+        assert_eq!(over.lit_fraction(1.0, 0.0).unwrap(), 1.0);
+        assert_eq!(
+            MsmMoments::from_raw_moments([0.5, f64::INFINITY, 0.1, 0.1])
+                .unwrap_err()
+                .parameter(),
+            "moments"
+        );
     }
 
     #[test]

@@ -6,7 +6,13 @@
 //! `t ≤ μ`. `σ² = M2 − M1²` cancels catastrophically when the depths are close together (f32 returns
 //! exactly 0 for depths 0.95 ± 1e-4); storing moments of `x − r` for a reference `r` near the depths
 //! removes most of it.
+//!
+//! A map whose moments a texture stores (`crate::storage`) holds the raw moments `d`, `d²` instead
+//! ([`ShiftedMoments::texel_moments`], read back by [`ShiftedMoments::from_raw_moments`]), as
+//! Donnelly & Lauritzen's shadow pass writes them, and keeps the variance only as well as its format
+//! does.
 
+use crate::depth_samples::Samples;
 use crate::error::ParamError;
 
 /// The first two moments of a set of depths `x` about a reference `r`:
@@ -25,7 +31,8 @@ impl ShiftedMoments {
     /// Two scalars per texel: `E[x]` and `E[x²]` (as shifted moments, `M1` and `M2`).
     pub const MOMENTS_PER_TEXEL: usize = 2;
 
-    /// From stored moments. `Err` names `reference`, `m1` or `m2`.
+    /// From stored moments. `reference = 0` takes raw moments `E[x]`, `E[x²]`, as
+    /// [`Self::from_raw_moments`] does. `Err` names `reference`, `m1` or `m2`.
     pub fn new(reference: f64, m1: f64, m2: f64) -> Result<Self, ParamError> {
         ParamError::finite("reference", reference)?;
         ParamError::finite("m1", m1)?;
@@ -53,6 +60,38 @@ impl ShiftedMoments {
         }
         let count = depths.len() as f64;
         Self::new(reference, s1 / count, s2 / count)
+    }
+
+    /// The moments of `depths` with one weight each (a filter kernel's taps: the weighted means
+    /// `Σ wᵢ·(xᵢ − r)ᵏ / Σ wᵢ`, each clamped to the range of its terms, as in
+    /// `crate::filterable`'s *Weights*), about `reference`. Unlike [`Self::from_depths`], the depths
+    /// must lie in `[0, 1]`, as a shadow map stores them. `Err` names `reference`, `depths` (empty,
+    /// or a value not in `[0, 1]`) or `weights` (wrong length, negative, not finite, or summing to
+    /// 0).
+    pub fn from_weighted_depths(
+        reference: f64,
+        depths: &[f64],
+        weights: &[f64],
+    ) -> Result<Self, ParamError> {
+        ParamError::finite("reference", reference)?;
+        let samples = Samples::new(depths, Some(weights))?;
+        let y = |x: f64| x - reference;
+        Self::new(reference, samples.mean(y), samples.mean(|x| y(x) * y(x)))
+    }
+
+    /// The raw moments one texel of depth `depth` stores, `[d, d²]` (Donnelly & Lauritzen 2006: what
+    /// the shadow pass writes, before the format rounds it; `crate::storage`). No validation.
+    #[must_use]
+    pub fn texel_moments(depth: f64) -> [f64; 2] {
+        [depth, depth * depth]
+    }
+
+    /// From blurred raw moments `[E[d], E[d²]]` as a texture holds them (`crate::storage`): the
+    /// moments about reference 0, whose variance `E[d²] − E[d]²` cancels as the stored precision
+    /// allows (the hazard [`Self::from_depths`] avoids by its reference). They lie in `[0, 1]` and
+    /// never overflow. `Err` as [`Self::new`].
+    pub fn from_raw_moments([mean, mean_square]: [f64; 2]) -> Result<Self, ParamError> {
+        Self::new(0.0, mean, mean_square)
     }
 
     /// μ = r + M1, the mean depth.
@@ -106,6 +145,32 @@ mod tests {
         let m1 = (raw_f32[0] + raw_f32[1]) / 2.0;
         let m2 = (raw_f32[0] * raw_f32[0] + raw_f32[1] * raw_f32[1]) / 2.0;
         assert_eq!(m2 - m1 * m1, 0.0, "the hazard this type exists for");
+    }
+
+    #[test]
+    fn weighted_moments_weigh_each_depth() {
+        let depths = [0.25, 0.5, 0.5, 0.75];
+        let plain = ShiftedMoments::from_depths(0.5, &depths).unwrap();
+        let equal = ShiftedMoments::from_weighted_depths(0.5, &depths, &[2.0; 4]).unwrap();
+        assert!((plain.m1 - equal.m1).abs() <= f64::EPSILON);
+        assert!((plain.m2 - equal.m2).abs() <= f64::EPSILON);
+        // Weights 3 and 1: the mean is ¾ of the way to the first depth.
+        let m = ShiftedMoments::from_weighted_depths(0.5, &[0.2, 0.6], &[3.0, 1.0]).unwrap();
+        assert!((m.mean() - 0.3).abs() < 1e-15, "{}", m.mean());
+        assert!((m.variance() - 0.03).abs() < 1e-15, "{}", m.variance());
+        let e = |r: Result<ShiftedMoments, ParamError>| r.unwrap_err().parameter();
+        assert_eq!(
+            e(ShiftedMoments::from_weighted_depths(0.5, &[1.5], &[1.0])),
+            "depths"
+        );
+        assert_eq!(
+            e(ShiftedMoments::from_weighted_depths(0.5, &[0.5], &[])),
+            "weights"
+        );
+        // Raw moments are the moments about 0.
+        let raw = ShiftedMoments::from_raw_moments([0.3, 0.12]).unwrap();
+        assert_eq!((raw.mean(), raw.variance()), (0.3, 0.12 - 0.09));
+        assert_eq!(ShiftedMoments::texel_moments(0.5), [0.5, 0.25]);
     }
 
     #[test]

@@ -63,7 +63,10 @@ pub use cascade_fit::{CascadeFit, Snap};
 pub use error::ShadowError;
 pub use faces::FaceRegion;
 pub use input::{Eye, FocusPolicy, LightSource, PlanInput};
-pub use lookup::{DEFAULT_DISK_SEED, DEFAULT_MIN_VARIANCE, Filter, Lookup, MomentMethod};
+pub use lookup::{
+    DEFAULT_DISK_SEED, DEFAULT_MIN_VARIANCE, Filter, GAUSSIAN_SIDE_PER_SIGMA, Kernel, Lookup,
+    MomentMethod, Prefilter, Storage,
+};
 pub use map::{MapOptions, ShadowMap};
 pub use omni::{LightFace, MIN_NEAR_FRACTION};
 pub use partition::{CullingSphere, Partition, Region};

@@ -1,14 +1,20 @@
 //! Looking a point up in a shadow map: the filters (nearest, PCF, a jittered disk, and the
 //! filterable maps VSM, ESM, EVSM and MSM), each reading the map with a bias ([`crate::bias`]).
+//!
+//! A filterable map takes two knobs, its [`Prefilter`]: the kernel its moments are filtered with
+//! ([`Kernel`]: box or Gaussian) and where they are held ([`Storage`]: exactly, or in a 32- or
+//! 16-bit float texture as an engine stores them).
 
 use std::f64::consts::TAU;
+use std::fmt;
 
 use glam::{DVec2, DVec3};
 use shadowlab_params::ParamError;
 use shadowlab_params::esm::ExponentialMoment;
-use shadowlab_params::evsm::{Evsm2Moments, Evsm4Moments};
+use shadowlab_params::evsm::{Evsm2Moments, Evsm4Moments, Warp, WarpedMoments};
 use shadowlab_params::filterable::FilterableMethod;
 use shadowlab_params::msm::MsmMoments;
+use shadowlab_params::storage::MomentFormat;
 use shadowlab_params::vsm::ShiftedMoments;
 
 use crate::bias::{Bias, Comparison, spec_numbers};
@@ -38,28 +44,187 @@ pub enum Filter {
         seed: u64,
     },
     /// Variance shadow maps (CAD eq. 2 on shifted moments, formulas.md §4.2, §9.4): the first two
-    /// moments of the `size × size` texels' depths about the centre texel's depth, and the
-    /// Chebyshev bound, with the variance raised to at least `min_variance`. The bias's depth
-    /// comparison is not applied (the variance is VSM's bias); its receiver offsets are.
+    /// moments of the `size × size` texels' depths, filtered and held as `prefilter` says (by
+    /// default box-filtered and exact, about the centre texel's depth), and the Chebyshev bound,
+    /// with the variance raised to at least `min_variance`. The bias's depth comparison is not
+    /// applied (the variance is VSM's bias); its receiver offsets are.
     Vsm {
         /// Side of the moment kernel, in texels (≥ 1).
         size: u32,
         /// The variance floor.
         min_variance: f64,
+        /// The kernel's weights and the moments' storage.
+        prefilter: Prefilter,
     },
     /// A filterable map beyond VSM: the moments its method stores, of the `size × size` texels'
-    /// depths (a box prefilter: every texel on the map weighted alike, as [`Filter::Vsm`] takes
-    /// them), about the centre texel's depth where the method takes a reference, and the method's
-    /// lit fraction at the receiver's depth. The bias's depth comparison is not applied (each
-    /// method's parameter is its bias); its receiver offsets are. The moments are formed in f64
-    /// from the stored depths: what a map that stores them at full precision and box-filters them
-    /// reads.
+    /// depths, filtered and held as `prefilter` says — by default a box (every texel on the map
+    /// weighted alike, as [`Filter::Vsm`] takes them) and exact (formed in f64 from the stored
+    /// depths, about the centre texel's depth where the method takes a reference) — and the
+    /// method's lit fraction at the receiver's depth. The bias's depth comparison is not applied
+    /// (each method's parameter is its bias); its receiver offsets are.
     Moments {
         /// Side of the kernel, in texels (≥ 1).
         size: u32,
         /// The method and its parameters.
         method: MomentMethod,
+        /// The kernel's weights and the moments' storage.
+        prefilter: Prefilter,
     },
+}
+
+/// The weights a filterable map's kernel gives the `K × K` texels it reads.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Kernel {
+    /// Every texel alike (the default).
+    #[default]
+    Box,
+    /// Separable Gaussian weights `w(x)·w(y)`, `w(x) = exp(−x²/(2σ²))` at each tap's offset `x` in
+    /// texels from the kernel's middle, with `σ = (K + 1)/6` ([`GAUSSIAN_SIDE_PER_SIGMA`]):
+    /// Filament's VSM blur (google/filament, `filament/src/ShadowMapManager.cpp`:
+    /// `sigma = (blurWidth + 1.0f) / 6.0f` for a blur `blurWidth` texels wide;
+    /// `PostProcessManager::gaussianBlurPass`: the weights `exp(−x²/(2σ²))` divided by their sum,
+    /// a horizontal pass, then a vertical one). Filament rounds its tap count up to `4n + 5` (pairs
+    /// of taps read bilinearly); shadowlab keeps the `K` taps per axis the box reads, so that the
+    /// two kernels read the same texels, and normalises the weights over the taps that lie on the
+    /// map.
+    Gaussian,
+}
+
+/// `K + 1` texels span this many σ of the Gaussian kernel ([`Kernel::Gaussian`]: `σ = (K + 1)/6`,
+/// Filament's rule).
+pub const GAUSSIAN_SIDE_PER_SIGMA: f64 = 6.0;
+
+impl Kernel {
+    /// Every kernel, the default first.
+    pub const ALL: [Self; 2] = [Self::Box, Self::Gaussian];
+
+    /// The kernel's name in a filter spec: `box`, `gauss`.
+    #[must_use]
+    pub const fn key(self) -> &'static str {
+        match self {
+            Self::Box => "box",
+            Self::Gaussian => "gauss",
+        }
+    }
+
+    /// The weights of the `size` taps along one axis, in order, summing to 1: `1/K` each for the
+    /// box; `w(x) = exp(−x²/(2σ²))` at the offsets `x = a − (K − 1)/2`, divided by their sum, for
+    /// the Gaussian (symmetric about the middle; `[1]` for `K = 1`, as the box).
+    #[must_use]
+    pub fn weights(self, size: u32) -> Vec<f64> {
+        let half = 0.5 * f64::from(size.saturating_sub(1));
+        let raw: Vec<f64> = match self {
+            Self::Box => vec![1.0; size as usize],
+            Self::Gaussian => {
+                let sigma = (f64::from(size) + 1.0) / GAUSSIAN_SIDE_PER_SIGMA;
+                (0..size)
+                    .map(|a| {
+                        let x = f64::from(a) - half;
+                        (-x * x / (2.0 * sigma * sigma)).exp()
+                    })
+                    .collect()
+            }
+        };
+        let total: f64 = raw.iter().sum();
+        raw.into_iter().map(|w| w / total).collect()
+    }
+}
+
+/// Where a filterable map's moments are held between its shadow pass, its blur and its lookup.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Storage {
+    /// Not stored: the moments formed in f64 from the stored depths at each lookup, about the centre
+    /// texel's depth where the method takes a reference (each method's shifted form) — the default,
+    /// what a map that keeps its moments exactly reads. Its memory is reported as 32-bit moments.
+    #[default]
+    Exact,
+    /// In a texture of this format, as an engine stores them (`shadowlab_params::storage`): each
+    /// texel's raw moments rounded to the format, the kernel applied as two separable blur passes
+    /// (rows, then columns) each accumulated in f32 and rounded to the format as it is written,
+    /// and the method's reconstruction from the blurred raw moments. A warp whose moment overflowed
+    /// the format reads lit (*overflow reads lit*).
+    Texture(MomentFormat),
+}
+
+impl Storage {
+    /// Every storage, the default first.
+    pub const ALL: [Self; 3] = [
+        Self::Exact,
+        Self::Texture(MomentFormat::F32),
+        Self::Texture(MomentFormat::F16),
+    ];
+
+    /// The storage's name in a filter spec: `exact`, `f32`, `f16`.
+    #[must_use]
+    pub const fn key(self) -> &'static str {
+        match self {
+            Self::Exact => "exact",
+            Self::Texture(format) => format.key(),
+        }
+    }
+
+    /// Bytes per stored moment: the format's (4 for f32, 2 for f16), and 4 for [`Self::Exact`],
+    /// reported as 32-bit moments.
+    #[must_use]
+    pub const fn bytes_per_moment(self) -> u32 {
+        match self {
+            Self::Exact => 4,
+            Self::Texture(format) => format.bytes(),
+        }
+    }
+}
+
+/// A filterable map's prefilter knobs: the kernel's weights and the moments' storage. Written after
+/// the filter's numbers, each after an `@`, in any order (`vsm:5@gauss@f16`); the defaults, a box
+/// and exact moments, may be omitted and are not printed.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct Prefilter {
+    /// The kernel's weights.
+    pub kernel: Kernel,
+    /// Where the moments are held.
+    pub storage: Storage,
+}
+
+impl Prefilter {
+    /// The knobs after a filterable map's numbers: `@`-separated keys of a [`Kernel`] and a
+    /// [`Storage`], each at most once (`knobs` without its first `@`). Errors name `spec`.
+    fn parse(knobs: &str, spec: &str) -> Result<Self, String> {
+        let mut kernel = None;
+        let mut storage = None;
+        for knob in knobs.split('@') {
+            if let Some(k) = Kernel::ALL.into_iter().find(|k| k.key() == knob) {
+                if kernel.replace(k).is_some() {
+                    return Err(format!("{spec:?} names two kernels"));
+                }
+            } else if let Some(s) = Storage::ALL.into_iter().find(|s| s.key() == knob) {
+                if storage.replace(s).is_some() {
+                    return Err(format!("{spec:?} names two storages"));
+                }
+            } else {
+                return Err(format!(
+                    "unknown knob {knob:?} in {spec:?}; known: @box, @gauss (the kernel), \
+                     @exact, @f32, @f16 (the storage)"
+                ));
+            }
+        }
+        Ok(Self {
+            kernel: kernel.unwrap_or_default(),
+            storage: storage.unwrap_or_default(),
+        })
+    }
+}
+
+impl fmt::Display for Prefilter {
+    /// The knobs as a spec writes them, the defaults left out: `@gauss@f16`, `@f32`, or nothing.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.kernel != Kernel::default() {
+            write!(f, "@{}", self.kernel.key())?;
+        }
+        if self.storage != Storage::default() {
+            write!(f, "@{}", self.storage.key())?;
+        }
+        Ok(())
+    }
 }
 
 /// A filterable map's reconstruction with its parameters (`shadowlab_params::filterable`, where
@@ -142,6 +307,84 @@ impl MomentMethod {
             }
         }
     }
+
+    /// As [`Self::lit_fraction`], with one weight per depth (the kernel's, as the methods'
+    /// `from_weighted_depths` take them).
+    ///
+    /// # Errors
+    /// The method's, naming the parameter out of its domain.
+    pub fn weighted_lit_fraction(
+        self,
+        reference: f64,
+        (depths, weights): (&[f64], &[f64]),
+        receiver: f64,
+    ) -> Result<f64, ParamError> {
+        match self {
+            Self::Esm { exponent } => {
+                ExponentialMoment::from_weighted_depths(exponent, depths, weights)?
+                    .lit_fraction(receiver)
+            }
+            Self::Evsm2 {
+                exponent,
+                min_variance,
+            } => Evsm2Moments::from_weighted_depths(exponent, reference, depths, weights)?
+                .lit_fraction(receiver, min_variance),
+            Self::Evsm4 {
+                positive,
+                negative,
+                min_variance,
+            } => {
+                Evsm4Moments::from_weighted_depths(positive, negative, reference, depths, weights)?
+                    .lit_fraction(receiver, min_variance)
+            }
+            Self::Msm { alpha } => MsmMoments::from_weighted_depths(reference, depths, weights)?
+                .lit_fraction(receiver, alpha),
+        }
+    }
+
+    /// The lit fraction from the moments a texture of `format` holds after blurring the
+    /// footprint's texels with the per-axis weights `axis` ([`Storage::Texture`]). A warp whose
+    /// stored moments overflowed reads lit: ESM is then 1, EVSM4 its other warp's bound.
+    fn stored_lit_fraction(
+        self,
+        footprint: &Footprint,
+        (format, axis): (MomentFormat, &[f64]),
+        receiver: f64,
+    ) -> Result<f64, ParamError> {
+        let warp = |warp: Warp, exponent: f64, min_variance: f64| {
+            let raw = footprint.stored(format, axis, |d| {
+                WarpedMoments::texel_moments(warp, exponent, d)
+            })?;
+            WarpedMoments::from_raw_moments(warp, exponent, raw)?
+                .map_or(Ok(1.0), |m| m.lit_fraction(receiver, min_variance))
+        };
+        match self {
+            Self::Esm { exponent } => {
+                let raw = footprint.stored(format, axis, |d| {
+                    ExponentialMoment::texel_moments(exponent, d)
+                })?;
+                ExponentialMoment::from_raw_moments(exponent, raw)?
+                    .map_or(Ok(1.0), |m| m.lit_fraction(receiver))
+            }
+            Self::Evsm2 {
+                exponent,
+                min_variance,
+            } => warp(Warp::Positive, exponent, min_variance),
+            Self::Evsm4 {
+                positive,
+                negative,
+                min_variance,
+            } => Ok(warp(Warp::Positive, positive, min_variance)?.min(warp(
+                Warp::Negative,
+                negative,
+                min_variance,
+            )?)),
+            Self::Msm { alpha } => {
+                let raw = footprint.stored(format, axis, MsmMoments::texel_moments)?;
+                MsmMoments::from_raw_moments(raw)?.lit_fraction(receiver, alpha)
+            }
+        }
+    }
 }
 
 /// 2⁶⁴/φ, SplitMix64's increment.
@@ -184,15 +427,56 @@ impl Lookup {
         let centre = DVec2::new(window.x * side, window.y * side);
         let receiver = window.z;
         match self.filter {
-            Filter::Vsm { size, min_variance } => {
-                return filtered(map, centre, size, |reference, depths| {
-                    ShiftedMoments::from_depths(reference, depths)
-                        .and_then(|m| m.lit_fraction(receiver, min_variance))
+            Filter::Vsm {
+                size,
+                min_variance,
+                prefilter,
+            } => {
+                return filtered(map, centre, size, |footprint| {
+                    let moments = match (prefilter.storage, prefilter.kernel) {
+                        (Storage::Exact, Kernel::Box) => {
+                            ShiftedMoments::from_depths(footprint.reference, &footprint.depths())?
+                        }
+                        (Storage::Exact, kernel) => ShiftedMoments::from_weighted_depths(
+                            footprint.reference,
+                            &footprint.depths(),
+                            &footprint.weights(&kernel.weights(size)),
+                        )?,
+                        (Storage::Texture(format), kernel) => {
+                            ShiftedMoments::from_raw_moments(footprint.stored(
+                                format,
+                                &kernel.weights(size),
+                                ShiftedMoments::texel_moments,
+                            )?)?
+                        }
+                    };
+                    moments.lit_fraction(receiver, min_variance)
                 });
             }
-            Filter::Moments { size, method } => {
-                return filtered(map, centre, size, |reference, depths| {
-                    method.lit_fraction(reference, depths, receiver)
+            Filter::Moments {
+                size,
+                method,
+                prefilter,
+            } => {
+                return filtered(map, centre, size, |footprint| {
+                    match (prefilter.storage, prefilter.kernel) {
+                        (Storage::Exact, Kernel::Box) => {
+                            method.lit_fraction(footprint.reference, &footprint.depths(), receiver)
+                        }
+                        (Storage::Exact, kernel) => method.weighted_lit_fraction(
+                            footprint.reference,
+                            (
+                                &footprint.depths(),
+                                &footprint.weights(&kernel.weights(size)),
+                            ),
+                            receiver,
+                        ),
+                        (Storage::Texture(format), kernel) => method.stored_lit_fraction(
+                            footprint,
+                            (format, &kernel.weights(size)),
+                            receiver,
+                        ),
+                    }
                 });
             }
             Filter::Nearest | Filter::Pcf { .. } | Filter::Disk { .. } => {}
@@ -242,11 +526,8 @@ fn texel(map: &ShadowMap, at: DVec2) -> Option<(u32, u32)> {
     map.texel_of(DVec3::new(at.x / side, at.y / side, 0.0))
 }
 
-/// A filterable map's lit fraction: `lit(reference, depths)` of the depths of the `size × size`
-/// texels around `centre` that lie on the map — the texels holding `centre + (a − h, b − h)` for
-/// `a, b < size`, `h = (size − 1)/2`, as PCF reads them: for an odd size the texels centred on the
-/// point's own, for an even size the box whose middle is nearest the point — `reference` the depth of
-/// the texel holding `centre`; 1 where that is off the map. The depths are a map's stored window
+/// A filterable map's lit fraction: `lit` of the [`Footprint`] of the `size × size` texels around
+/// `centre`; 1 where the texel holding `centre` is off the map. The depths are a map's stored window
 /// depths, in `[0, 1]`, and the methods' parameters are checked when the filter is parsed
 /// ([`Filter::parse`]), so `lit` fails only on input no map holds; such a point reads as lit, as off
 /// the map.
@@ -254,22 +535,105 @@ fn filtered(
     map: &ShadowMap,
     centre: DVec2,
     size: u32,
-    lit: impl FnOnce(f64, &[f64]) -> Result<f64, ParamError>,
+    lit: impl FnOnce(&Footprint) -> Result<f64, ParamError>,
 ) -> f64 {
     let Some((ci, cj)) = texel(map, centre) else {
         return 1.0;
     };
     let half = 0.5 * f64::from(size.saturating_sub(1));
-    let mut depths = Vec::with_capacity((size * size) as usize);
+    let mut taps = Vec::with_capacity((size * size) as usize);
     for b in 0..size {
         for a in 0..size {
             let offset = DVec2::new(f64::from(a) - half, f64::from(b) - half);
             if let Some((i, j)) = texel(map, centre + offset) {
-                depths.push(map.depth(i, j));
+                taps.push(Tap {
+                    column: a as usize,
+                    row: b as usize,
+                    depth: map.depth(i, j),
+                });
             }
         }
     }
-    lit(map.depth(ci, cj), &depths).unwrap_or(1.0)
+    let footprint = Footprint {
+        reference: map.depth(ci, cj),
+        taps,
+    };
+    lit(&footprint).unwrap_or(1.0)
+}
+
+/// The texels a filterable map's kernel reads around a point: those of the `size × size` texels
+/// holding `centre + (a − h, b − h)`, `a, b < size`, `h = (size − 1)/2`, that lie on the map, as
+/// PCF reads them (for an odd size the texels centred on the point's own, for an even size the box
+/// whose middle is nearest the point), row by row.
+struct Footprint {
+    /// The depth of the texel holding the point: the reference of the exact moments.
+    reference: f64,
+    /// The texels on the map, in row-major order.
+    taps: Vec<Tap>,
+}
+
+/// One texel of a [`Footprint`].
+struct Tap {
+    /// Its column `a` within the kernel.
+    column: usize,
+    /// Its row `b` within the kernel.
+    row: usize,
+    /// Its stored depth.
+    depth: f64,
+}
+
+impl Footprint {
+    /// The texels' depths, in row-major order.
+    fn depths(&self) -> Vec<f64> {
+        self.taps.iter().map(|t| t.depth).collect()
+    }
+
+    /// The texels' separable weights `axis[a]·axis[b]`, in the order of [`Self::depths`].
+    fn weights(&self, axis: &[f64]) -> Vec<f64> {
+        self.taps
+            .iter()
+            .map(|t| axis[t.column] * axis[t.row])
+            .collect()
+    }
+
+    /// The blurred raw moments a texture of `format` holds at the footprint's middle
+    /// ([`Storage::Texture`]): each texel's `texel(depth)` rounded to the format, a pass along each
+    /// row of the footprint with the weights `axis[a]` of its texels, then a pass down the rows with
+    /// the weights `axis[b]` (each pass normalised over the taps on the map, accumulated in f32 and
+    /// rounded to the format: `MomentFormat::blur_pass`).
+    fn stored<const N: usize>(
+        &self,
+        format: MomentFormat,
+        axis: &[f64],
+        texel: impl Fn(f64) -> [f64; N],
+    ) -> Result<[f64; N], ParamError> {
+        let mut rows: Vec<[f64; N]> = Vec::new();
+        let mut row_weights = Vec::new();
+        for row in self.taps.chunk_by(|a, b| a.row == b.row) {
+            let texels: Vec<[f64; N]> = row
+                .iter()
+                .map(|t| texel(t.depth).map(|m| format.round(m)))
+                .collect();
+            let weights: Vec<f64> = row.iter().map(|t| axis[t.column]).collect();
+            rows.push(blur(format, &texels, &weights)?);
+            row_weights.push(axis[row[0].row]);
+        }
+        blur(format, &rows, &row_weights)
+    }
+}
+
+/// One blur pass over `texels`, moment by moment.
+fn blur<const N: usize>(
+    format: MomentFormat,
+    texels: &[[f64; N]],
+    weights: &[f64],
+) -> Result<[f64; N], ParamError> {
+    let mut out = [0.0; N];
+    for (k, mean) in out.iter_mut().enumerate() {
+        let values: Vec<f64> = texels.iter().map(|t| t[k]).collect();
+        *mean = format.blur_pass(&values, weights)?;
+    }
+    Ok(out)
 }
 
 /// The disk's taps (see [`Filter::Disk`]).
@@ -302,10 +666,32 @@ impl Filter {
     /// prefilter's side in texels; the filterable maps' parameters as [`MomentMethod`] names them,
     /// checked here against their domains).
     ///
+    /// The filterable maps (`vsm`, `esm`, `evsm2`, `evsm4`, `msm`) take their [`Prefilter`] knobs
+    /// after their numbers, each after an `@`, in any order, each at most once: the kernel `@box`
+    /// (the default) or `@gauss` ([`Kernel`]), and the storage `@exact` (the default), `@f32` or
+    /// `@f16` ([`Storage`]). So `evsm4:5,40,5@gauss@f16` is EVSM4 with a 5 × 5 Gaussian over
+    /// moments stored in half floats, and every spec without `@` means what it always meant (a
+    /// box, exact moments). In an `analyze --filters` list, where `,` separates filters and `;` a
+    /// filter's numbers, the knobs are written the same way: `evsm4:5;40;5@gauss@f16`.
+    ///
     /// # Errors
     /// A message naming what is wrong and the accepted forms.
     pub fn parse(spec: &str) -> Result<Self, String> {
-        let (name, n) = spec_numbers(spec, 4)?;
+        let (numbers, knobs) = match spec.split_once('@') {
+            Some((numbers, knobs)) => (numbers, Some(knobs)),
+            None => (spec, None),
+        };
+        let (name, n) = spec_numbers(numbers, 4)?;
+        if knobs.is_some() && FilterableMethod::from_key(name).is_none() {
+            return Err(format!(
+                "{spec:?}: the @ knobs (kernel, storage) apply to the filterable maps vsm, esm, \
+                 evsm2, evsm4 and msm only"
+            ));
+        }
+        let prefilter = knobs
+            .map(|knobs| Prefilter::parse(knobs, spec))
+            .transpose()?
+            .unwrap_or_default();
         let count = |v: f64, what: &str| {
             #[expect(
                 clippy::cast_possible_truncation,
@@ -322,7 +708,11 @@ impl Filter {
             method
                 .lit_fraction(0.5, &[0.5], 0.5)
                 .map_err(|e| format!("{spec:?}: {e}"))?;
-            Ok(Self::Moments { size, method })
+            Ok(Self::Moments {
+                size,
+                method,
+                prefilter,
+            })
         };
         match (name, n.as_slice()) {
             ("nearest", []) => Ok(Self::Nearest),
@@ -358,10 +748,12 @@ impl Filter {
             ("vsm", [k]) => Ok(Self::Vsm {
                 size: count(*k, "the kernel size")?,
                 min_variance: DEFAULT_MIN_VARIANCE,
+                prefilter,
             }),
             ("vsm", [k, floor]) if *floor >= 0.0 => Ok(Self::Vsm {
                 size: count(*k, "the kernel size")?,
                 min_variance: *floor,
+                prefilter,
             }),
             ("esm", [k, c]) => moments(*k, MomentMethod::Esm { exponent: *c }),
             ("evsm2", [k, c]) | ("evsm2", [k, c, _]) => moments(
@@ -383,7 +775,8 @@ impl Filter {
             _ => Err(format!(
                 "unknown filter {spec:?}; known: nearest, pcf:K, disk:TAPS,RADIUS[,SEED], \
                  vsm:K[,MIN_VARIANCE], esm:K,C, evsm2:K,C[,MIN_VARIANCE], \
-                 evsm4:K,C+,C-[,MIN_VARIANCE], msm:K,ALPHA"
+                 evsm4:K,C+,C-[,MIN_VARIANCE], msm:K,ALPHA; the last five may end in \
+                 @box or @gauss and @exact, @f32 or @f16"
             )),
         }
     }

@@ -19,8 +19,8 @@ use shadowlab_raster::image_out::{depth_exr, depth_npy, depth_png16};
 use shadowlab_scene::Scene;
 use shadowlab_shadow::optimal::OptimalOptions;
 use shadowlab_shadow::{
-    Bias, DepthComparison, Filter, FocusPolicy, FrameOptions, Lookup, PlanOptions, ShadowMap,
-    Splits, StepDirection, Technique, WarpChoice, eye_pass, render_shadows,
+    Bias, DepthComparison, Filter, FocusPolicy, FrameOptions, Lookup, PlanOptions, Prefilter,
+    ShadowMap, Splits, StepDirection, Technique, WarpChoice, eye_pass, render_shadows,
 };
 
 use crate::setup_file::small_outdoor;
@@ -159,6 +159,7 @@ fn a_written_set_up_measures_what_analyzing_the_technique_measures() {
             filter: Filter::Vsm {
                 size: 3,
                 min_variance: 1e-6,
+                prefilter: Prefilter::default(),
             },
             format: DepthFormat::ReversedF32,
             ..Case::new(Technique::Lispsm(WarpChoice::PAPER))

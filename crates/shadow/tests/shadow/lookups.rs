@@ -1,12 +1,15 @@
 //! Shadow maps rendered and looked up: the occluder's shadow falls where geometry says, the bias
 //! family trades acne against light leaks as documented, filters give fractions only near edges.
 
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 use shadowlab_hull::{Aabb, Perspective, ViewPose};
+use shadowlab_params::storage::MomentFormat;
+use shadowlab_params::vsm::ShiftedMoments;
 use shadowlab_raster::{DepthFormat, Triangles};
 use shadowlab_shadow::{
-    Bias, DEFAULT_MIN_VARIANCE, DepthComparison, Eye, Filter, FocusPolicy, LightSetup, LightSource,
-    Lookup, MapOptions, MomentMethod, PlanInput, ShadowMap, Technique, WarpChoice, plan,
+    Bias, DEFAULT_MIN_VARIANCE, DepthComparison, Eye, Filter, FocusPolicy, GAUSSIAN_SIDE_PER_SIGMA,
+    Kernel, LightSetup, LightSource, Lookup, MapOptions, MomentMethod, PlanInput, Prefilter,
+    ShadowMap, Storage, Technique, WarpChoice, plan,
 };
 
 /// A 40 × 40 ground at y = 0 tilted by `tilt` (rise per unit x), and a closed box floating over
@@ -175,6 +178,7 @@ fn filters_soften_only_the_edge() {
         Filter::Vsm {
             size: 5,
             min_variance: 1e-6,
+            prefilter: Prefilter::default(),
         },
     ] {
         let lookup = Lookup::new(bias, filter);
@@ -294,6 +298,7 @@ fn filterable_maps_parse_with_their_parameters() {
                 negative: 20.0,
                 min_variance: DEFAULT_MIN_VARIANCE,
             },
+            prefilter: Prefilter::default(),
         }
     );
     assert_eq!(
@@ -304,6 +309,7 @@ fn filterable_maps_parse_with_their_parameters() {
                 exponent: 5.0,
                 min_variance: 0.0,
             },
+            prefilter: Prefilter::default(),
         }
     );
     for (spec, names) in [
@@ -396,6 +402,7 @@ fn vsm_leaks_on_a_two_occluder_stack_and_the_others_less() {
     let vsm = read(Filter::Vsm {
         size: 3,
         min_variance: 0.0,
+        prefilter: Prefilter::default(),
     });
     let (front, back) = (map.depth(8, 8), map.depth(7, 8));
     let (p, gap) = (2.0 / 3.0, back - front);
@@ -447,6 +454,7 @@ fn an_even_prefilter_reads_its_whole_box() {
         Filter::Vsm {
             size: 2,
             min_variance: 0.0,
+            prefilter: Prefilter::default(),
         },
     )
     .lit_fraction(&map, point, DVec3::Y);
@@ -458,4 +466,390 @@ fn an_even_prefilter_reads_its_whole_box() {
         vsm > 0.1,
         "a 1 × 1 read would see one depth and give 0: {vsm}"
     );
+}
+
+/// Every filterable spec of the command line's tables, with its defaults left implicit.
+const DEFAULT_SPECS: [&str; 6] = [
+    "vsm:3",
+    "vsm:5,0",
+    "esm:5,80",
+    "evsm2:3,11.08",
+    "evsm4:5,11.08,11.08,0",
+    "msm:3,6e-5",
+];
+
+/// The filterable lookup as it read before the prefilter knobs (kept here as the reference): the
+/// depths of the `size × size` texels around the point that lie on the map, in row-major order, and
+/// the method's moments of them about the depth of the point's own texel, box-weighted, in f64.
+fn lit_before_knobs(map: &ShadowMap, filter: Filter, world: DVec3) -> f64 {
+    let Some(window) = map.setup.mapping.window(world) else {
+        return 1.0;
+    };
+    let side = f64::from(map.resolution);
+    let centre = DVec2::new(window.x * side, window.y * side);
+    let texel = |at: DVec2| map.texel_of(DVec3::new(at.x / side, at.y / side, 0.0));
+    let Some((ci, cj)) = texel(centre) else {
+        return 1.0;
+    };
+    let size = match filter {
+        Filter::Vsm { size, .. } | Filter::Moments { size, .. } => size,
+        _ => unreachable!("a filterable map"),
+    };
+    let half = 0.5 * f64::from(size - 1);
+    let mut depths = Vec::new();
+    for b in 0..size {
+        for a in 0..size {
+            let offset = DVec2::new(f64::from(a) - half, f64::from(b) - half);
+            if let Some((i, j)) = texel(centre + offset) {
+                depths.push(map.depth(i, j));
+            }
+        }
+    }
+    let reference = map.depth(ci, cj);
+    match filter {
+        Filter::Vsm { min_variance, .. } => ShiftedMoments::from_depths(reference, &depths)
+            .and_then(|m| m.lit_fraction(window.z, min_variance)),
+        Filter::Moments { method, .. } => method.lit_fraction(reference, &depths, window.z),
+        _ => unreachable!("a filterable map"),
+    }
+    .unwrap_or(1.0)
+}
+
+/// Points across the box's shadow on the ground and on the box's top, in a grid.
+fn across_the_shadow() -> Vec<DVec3> {
+    (0..30)
+        .flat_map(|k| {
+            (0..6).map(move |m| {
+                let x = -3.0 + 0.2 * f64::from(k);
+                let z = -2.6 + 1.05 * f64::from(m);
+                DVec3::new(x, if m == 5 { 5.0 } else { 0.0 }, z)
+            })
+        })
+        .collect()
+}
+
+/// Claim: a spec without knobs reads every map exactly as the filterable lookups read before the
+/// knobs existed (box weights, exact f64 moments about the centre texel): bit for bit, on rendered
+/// maps of two techniques and on a synthetic two-occluder map.
+#[test]
+fn specs_without_knobs_read_as_before() {
+    let setup = plan(&input(DVec3::new(0.0, 1.0, 0.0)), Technique::Uniform).unwrap();
+    let maps = [
+        render(Technique::Uniform, DVec3::new(0.0, 1.0, 0.0), 0.0, false),
+        render(
+            Technique::Lispsm(WarpChoice::PAPER),
+            DVec3::new(-0.3, 1.0, 0.2),
+            0.0,
+            false,
+        ),
+        synthetic(&setup, 16, |i, j| if (i + j) % 3 == 0 { 0.2 } else { 0.5 }),
+    ];
+    for spec in DEFAULT_SPECS {
+        let filter = Filter::parse(spec).unwrap();
+        let lookup = Lookup::new(Bias::NONE, filter);
+        for map in &maps {
+            for point in across_the_shadow() {
+                assert_eq!(
+                    lookup.lit_fraction(map, point, DVec3::Y).to_bits(),
+                    lit_before_knobs(map, filter, point).to_bits(),
+                    "{spec} at {point}"
+                );
+            }
+        }
+    }
+}
+
+/// How far the Gaussian weights' sum, or a ratio of two of them, may be from its closed form: a
+/// few roundings of the normalisation.
+const WEIGHT_TOLERANCE: f64 = 1e-15;
+/// A lookup against the closed form of the same bound, by another route in f64 (as the stack tests
+/// above compare them).
+const CLOSED_FORM_TOLERANCE: f64 = 1e-12;
+/// The most an umbra may read lit, and the least below 1 the open ground may: far from the edge
+/// every method's floor or bias leaves it within a hundredth of the exact 0 or 1 on this map.
+const UMBRA_AND_OPEN_MARGIN: f64 = 0.01;
+
+/// Claim: each kernel's weights along an axis sum to 1 and are symmetric about the middle; the
+/// Gaussian's fall off from the middle with σ = (K + 1)/6 (Filament's rule) and are `[1]` at
+/// K = 1, the box's.
+#[test]
+fn kernel_weights_are_normalised_and_symmetric() {
+    for kernel in Kernel::ALL {
+        for size in [1, 2, 3, 4, 5, 9, 64] {
+            let w = kernel.weights(size);
+            assert_eq!(w.len(), size as usize);
+            let sum: f64 = w.iter().sum();
+            assert!(
+                (sum - 1.0).abs() <= WEIGHT_TOLERANCE,
+                "{kernel:?} {size}: {sum}"
+            );
+            for a in 0..w.len() {
+                assert_eq!(w[a], w[w.len() - 1 - a], "{kernel:?} {size} tap {a}");
+            }
+        }
+        assert_eq!(kernel.weights(1), [1.0]);
+    }
+    let w = Kernel::Gaussian.weights(5);
+    assert!(w[0] < w[1] && w[1] < w[2], "{w:?}");
+    let sigma = 6.0 / GAUSSIAN_SIDE_PER_SIGMA;
+    assert!((w[1] / w[2] - (-1.0 / (2.0 * sigma * sigma)).exp()).abs() <= WEIGHT_TOLERANCE);
+    assert_eq!(Kernel::Box.weights(4), [0.25; 4]);
+}
+
+/// The two-occluder map of the stack tests: columns alternate between depths 0.2 and 0.5.
+fn stack_map() -> ShadowMap {
+    let setup = plan(&input(DVec3::new(0.0, 1.0, 0.0)), Technique::Uniform).unwrap();
+    synthetic(&setup, 16, |i, _| if i % 2 == 0 { 0.2 } else { 0.5 })
+}
+
+/// Claim: the Gaussian prefilter reads the weighted moments of the box's texels: on the stack, a 3
+/// × 3 Gaussian centred on a front column puts the share `2·w(1)/(w(0) + 2·w(1))` of the weight on
+/// the back occluder (below the box's ⅔), and VSM's bound is that two-point distribution's; each
+/// method reads what its weighted moments give.
+#[test]
+fn the_gaussian_prefilter_weighs_the_kernels_texels() {
+    let map = stack_map();
+    let receiver = 0.6;
+    let point = at_window(&map, (8, 8), receiver);
+    let t = map.setup.mapping.window(point).unwrap().z;
+    let read = |spec: &str| {
+        Lookup::new(Bias::NONE, Filter::parse(spec).unwrap()).lit_fraction(&map, point, DVec3::Y)
+    };
+    let w = Kernel::Gaussian.weights(3);
+    let (front, back) = (map.depth(8, 8), map.depth(7, 8));
+    let (p, gap) = (2.0 * w[0] / (w[1] + 2.0 * w[0]), back - front);
+    assert!(p < 2.0 / 3.0);
+    let (mean, variance) = (front + p * gap, p * (1.0 - p) * gap * gap);
+    let closed = variance / (variance + (t - mean).powi(2));
+    let vsm = read("vsm:3,0@gauss");
+    assert!(
+        (vsm - closed).abs() <= CLOSED_FORM_TOLERANCE,
+        "VSM {vsm} against {closed}"
+    );
+    assert_ne!(vsm, read("vsm:3,0"));
+    let depths: Vec<f64> = (0..3).flat_map(|_| [back, front, back]).collect();
+    let weights: Vec<f64> = (0..3)
+        .flat_map(|b| (0..3).map(move |a| (a, b)))
+        .map(|(a, b)| w[a] * w[b])
+        .collect();
+    for spec in ["esm:3,80", "evsm2:3,11.08", "evsm4:3,40,40,0", "msm:3,1e-7"] {
+        let Filter::Moments { method, .. } = Filter::parse(spec).unwrap() else {
+            unreachable!("a filterable map")
+        };
+        let direct = method
+            .weighted_lit_fraction(front, (&depths, &weights), t)
+            .unwrap();
+        assert_eq!(read(&format!("{spec}@gauss")), direct, "{spec}");
+    }
+}
+
+/// Claim: at K = 1 the Gaussian is the box, whatever the storage: the same lit fraction bit for
+/// bit, for every method.
+#[test]
+fn a_one_texel_gaussian_is_the_box() {
+    let map = render(Technique::Uniform, DVec3::new(0.0, 1.0, 0.0), 0.0, false);
+    for spec in [
+        "vsm:1",
+        "esm:1,80",
+        "evsm2:1,11.08",
+        "evsm4:1,11.08,11.08",
+        "msm:1,6e-5",
+    ] {
+        for storage in ["", "@f32", "@f16"] {
+            let read = |kernel: &str| {
+                let filter = Filter::parse(&format!("{spec}{kernel}{storage}")).unwrap();
+                let lookup = Lookup::new(Bias::NONE, filter);
+                across_the_shadow()
+                    .into_iter()
+                    .map(|p| lookup.lit_fraction(&map, p, DVec3::Y).to_bits())
+                    .collect::<Vec<_>>()
+            };
+            assert_eq!(read("@gauss"), read(""), "{spec}{storage}");
+        }
+    }
+}
+
+/// Claim: every method, kernel and storage gives lit fractions in `[0, 1]` (never NaN) across the
+/// box's shadow; every one shadows the umbra but ESM with c = 80 in half floats, whose `exp(80·d)`
+/// overflows binary16 for every depth above 0.139 and so reads lit (*overflow reads lit*); every one
+/// lights the open ground but those without a variance floor in half floats, where the stored mean
+/// of the ground's own depth can round to just in front of it (acne: what the floor is for).
+#[test]
+fn every_knob_gives_fractions_in_the_unit_interval() {
+    let map = render(Technique::Uniform, DVec3::new(0.0, 1.0, 0.0), 0.0, false);
+    for spec in DEFAULT_SPECS {
+        for kernel in Kernel::ALL {
+            for storage in Storage::ALL {
+                let prefilter = Prefilter { kernel, storage };
+                let filter = Filter::parse(&format!("{spec}{prefilter}")).unwrap();
+                let lookup = Lookup::new(Bias::NONE, filter);
+                for point in across_the_shadow() {
+                    let lit = lookup.lit_fraction(&map, point, DVec3::Y);
+                    assert!(
+                        (0.0..=1.0).contains(&lit),
+                        "{spec}{prefilter} at {point}: {lit}"
+                    );
+                }
+                let umbra = lookup.lit_fraction(&map, DVec3::ZERO, DVec3::Y);
+                let open = lookup.lit_fraction(&map, DVec3::new(8.0, 0.0, 8.0), DVec3::Y);
+                let overflows =
+                    spec.starts_with("esm") && storage == Storage::Texture(MomentFormat::F16);
+                if overflows {
+                    assert_eq!(umbra, 1.0, "{spec}{prefilter}: umbra");
+                } else {
+                    assert!(
+                        umbra < UMBRA_AND_OPEN_MARGIN,
+                        "{spec}{prefilter}: umbra {umbra}"
+                    );
+                }
+                let acne = spec.ends_with(",0") && storage == Storage::Texture(MomentFormat::F16);
+                assert!(
+                    acne || open > 1.0 - UMBRA_AND_OPEN_MARGIN,
+                    "{spec}{prefilter}: open ground {open}"
+                );
+            }
+        }
+    }
+}
+
+/// How far f32 storage moves a lookup from the exact moments' on the rendered box (measured: up to
+/// 9·10⁻⁸ for VSM, ESM and EVSM, 3·10⁻⁶ for MSM, whose raw power moments lose most in the Hankel
+/// determinants; `shadowlab_params::storage` bounds the methods on synthetic distributions).
+const F32_LOOKUP_TOLERANCE: f64 = 1e-5;
+
+/// Claim: f32 storage reads what the exact moments read, to within [`F32_LOOKUP_TOLERANCE`], for
+/// every method and both kernels, across the box's shadow.
+#[test]
+fn f32_storage_reads_the_exact_moments() {
+    let map = render(Technique::Uniform, DVec3::new(0.0, 1.0, 0.0), 0.0, false);
+    for spec in [
+        "vsm:3",
+        "esm:5,80",
+        "evsm2:3,11.08",
+        "evsm4:5,11.08,11.08",
+        "msm:3,6e-5",
+    ] {
+        for kernel in ["", "@gauss"] {
+            let read = |storage: &str| {
+                let filter = Filter::parse(&format!("{spec}{kernel}{storage}")).unwrap();
+                let lookup = Lookup::new(Bias::NONE, filter);
+                across_the_shadow()
+                    .into_iter()
+                    .map(|p| lookup.lit_fraction(&map, p, DVec3::Y))
+                    .collect::<Vec<_>>()
+            };
+            for (exact, stored) in read("").into_iter().zip(read("@f32")) {
+                assert!(
+                    (exact - stored).abs() <= F32_LOOKUP_TOLERANCE,
+                    "{spec}{kernel}: exact {exact}, f32 {stored}"
+                );
+            }
+        }
+    }
+}
+
+/// How far f32 storage moves VSM's bound on the thin distant stack below, relative: its variance
+/// (3.4·10⁻⁶) is only some 60 times f32's rounding of `E[d²]` near 0.9 (1.8 % measured).
+const F32_THIN_STACK_TOLERANCE: f64 = 0.05;
+/// How far binary16 storage moves EVSM2 (c = 11.08) behind one occluder at 0.99: binary16 rounds
+/// `w ≈ 228` and `w² ≈ 5.2·10⁴` so that the stored variance cancels to 0, and the variance floor
+/// decides as for the exact single depth; the rounded mean moves the bound by 2·10⁻⁴.
+const F16_EVSM_TOLERANCE: f64 = 1e-3;
+
+/// Claim (the documented effects of half floats, end to end through the two blur passes): on a
+/// distant stack — 4 of a 5 × 5 kernel's texels at 0.95, the rest at 0.955 — binary16 loses VSM's
+/// variance and lights a receiver at 0.965 that f32 storage shadows as the exact moments do
+/// (2.8 % lit); EVSM2 at c = 11.08 (Filament's 5.54 in its units) stays finite in binary16 and
+/// shadows a receiver behind an occluder at 0.99 as the exact moments do, while at c = 12 (their 6)
+/// the squares of the warp overflow and the texel reads lit; EVSM4 keeps its negative warp's bound
+/// there.
+#[test]
+fn half_floats_cancel_the_variance_and_overflow() {
+    let setup = plan(&input(DVec3::new(0.0, 1.0, 0.0)), Technique::Uniform).unwrap();
+    let stack = synthetic(&setup, 16, |i, j| {
+        if [7, 9].contains(&i) && [7, 9].contains(&j) {
+            0.95
+        } else {
+            0.955
+        }
+    });
+    let read = |map: &ShadowMap, spec: &str, receiver: f64| {
+        let point = at_window(map, (8, 8), receiver);
+        Lookup::new(Bias::NONE, Filter::parse(spec).unwrap()).lit_fraction(map, point, DVec3::Y)
+    };
+    let exact = read(&stack, "vsm:5", 0.965);
+    let f32_lit = read(&stack, "vsm:5@f32", 0.965);
+    let f16_lit = read(&stack, "vsm:5@f16", 0.965);
+    assert!(exact < 0.03, "{exact}");
+    assert!(
+        (f32_lit - exact).abs() <= F32_THIN_STACK_TOLERANCE * exact,
+        "f32 {f32_lit} against {exact}"
+    );
+    assert!(f16_lit > 0.7, "binary16 leaks: {f16_lit}");
+
+    let occluder = synthetic(&setup, 16, |_, _| 0.99);
+    for (c, overflows) in [(11.08, false), (12.0, true)] {
+        let exact = read(&occluder, &format!("evsm2:3,{c}"), 0.995);
+        let half = read(&occluder, &format!("evsm2:3,{c}@f16"), 0.995);
+        assert!(exact < 0.05, "c = {c}: {exact}");
+        if overflows {
+            assert_eq!(half, 1.0, "c = {c}");
+            let both = read(&occluder, &format!("evsm4:3,{c},{c}@f16"), 0.995);
+            assert!(both < 0.5, "c = {c}: EVSM4 keeps its negative warp: {both}");
+        } else {
+            assert!(
+                (half - exact).abs() <= F16_EVSM_TOLERANCE,
+                "c = {c}: {half} against {exact}"
+            );
+        }
+    }
+}
+
+/// Claim: the knobs parse after `@` in any order, each at most once, only on filterable maps; the
+/// defaults are the plain spec's; a filter prints its knobs back as a spec writes them (defaults
+/// left out), and the list form of `analyze --filters` (`;` between numbers) reads the same.
+#[test]
+fn prefilter_knobs_parse_and_print() {
+    let knobs = |spec: &str| match Filter::parse(spec).unwrap() {
+        Filter::Vsm { prefilter, .. } | Filter::Moments { prefilter, .. } => prefilter,
+        other => panic!("{spec}: {other:?}"),
+    };
+    let half_gauss = Prefilter {
+        kernel: Kernel::Gaussian,
+        storage: Storage::Texture(MomentFormat::F16),
+    };
+    assert_eq!(knobs("evsm4:5,40,5@gauss@f16"), half_gauss);
+    assert_eq!(knobs("evsm4:5,40,5@f16@gauss"), half_gauss);
+    assert_eq!(
+        knobs("evsm4:5;40;5@gauss@f16".replace(';', ",").as_str()),
+        half_gauss
+    );
+    assert_eq!(knobs("vsm:5@box@exact"), Prefilter::default());
+    assert_eq!(
+        Filter::parse("msm:3,6e-5@box@exact").unwrap(),
+        Filter::parse("msm:3,6e-5").unwrap()
+    );
+    assert_eq!(half_gauss.to_string(), "@gauss@f16");
+    assert_eq!(Prefilter::default().to_string(), "");
+    for kernel in Kernel::ALL {
+        for storage in Storage::ALL {
+            let prefilter = Prefilter { kernel, storage };
+            assert_eq!(knobs(&format!("esm:3,80{prefilter}")), prefilter);
+        }
+    }
+    for (spec, says) in [
+        ("pcf:3@gauss", "filterable maps"),
+        ("nearest@f16", "filterable maps"),
+        ("vsm:5@gauss@box", "two kernels"),
+        ("vsm:5@f16@f32", "two storages"),
+        ("vsm:5@f64", "unknown knob"),
+        ("vsm:5@", "unknown knob"),
+        ("esm:3,0@f16", "exponent"),
+    ] {
+        let error = Filter::parse(spec).unwrap_err();
+        assert!(
+            error.contains(spec) && error.contains(says),
+            "{spec}: {error}"
+        );
+    }
 }
