@@ -7,7 +7,7 @@ use shadowlab_analysis::study::{Setting, footprints_of};
 use shadowlab_analysis::truth::{exact_truth, scene_bvh};
 use shadowlab_raster::image_out;
 use shadowlab_scene::Scene;
-use shadowlab_shadow::{Frame, FrameOptions, render_frame, scene_eye, view};
+use shadowlab_shadow::{Frame, FrameOptions, Technique, render_frame, scene_eye, view};
 
 use crate::args::RenderArgs;
 use crate::error::CliError;
@@ -69,7 +69,8 @@ pub(crate) fn run(args: &RenderArgs) -> Result<(), CliError> {
     let image_failure =
         |e: shadowlab_raster::RasterError| CliError::Failure(anyhow::anyhow!("{e}"));
     let picture_failure = |e: shadowlab_plot::PlotError| CliError::Failure(anyhow::anyhow!("{e}"));
-    let settings = settings_line(scene, &options);
+    let faces = frame.lights.first().map_or(0, |light| light.maps.len());
+    let settings = settings_line(scene, &options, faces);
     let mut files = vec![
         (
             "eye.png".to_string(),
@@ -172,10 +173,14 @@ pub(crate) fn run(args: &RenderArgs) -> Result<(), CliError> {
 }
 
 /// The settings a frame was made with, as one line under its pictures' titles.
-fn settings_line(scene: &Scene, options: &FrameOptions) -> String {
-    let partitions = match options.plan.partitions {
-        1 => "1 map per light".to_owned(),
-        k => format!("{k} maps per light ({} splits)", options.plan.splits),
+/// `faces` is how many maps the first light's partitions made (a point light's cube faces or
+/// paraboloid hemispheres).
+fn settings_line(scene: &Scene, options: &FrameOptions, faces: usize) -> String {
+    let partitions = match (options.plan.technique, options.plan.partitions) {
+        (Technique::Cube, _) => format!("{faces} cube faces per light"),
+        (Technique::DualParaboloid, _) => format!("{faces} paraboloid hemispheres per light"),
+        (_, 1) => "1 map per light".to_owned(),
+        (_, k) => format!("{k} maps per light ({} splits)", options.plan.splits),
     };
     format!(
         "{}² shadow map, {partitions}, filter {}, bias {}, format {}, focus {}; {}×{} eye image",
