@@ -4,7 +4,7 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use shadowlab_curves::{CurveConfig, FigureName, compute};
 
-use crate::params::value_error;
+use crate::params::{by_key, value_error};
 
 /// The figure `name` (`lispsm-fig6`, `cad-fig7`, `gmnpr-fig5`, `gmnpr-fig6`, `partitions`,
 /// `max-error-vs-angle`) for the papers' configuration (`near`, `far`, the full field of view in
@@ -19,12 +19,7 @@ pub(crate) fn figure(
     far: f64,
     fov_degrees: f64,
 ) -> PyResult<(String, Vec<String>, Vec<Vec<f64>>)> {
-    let figure = FigureName::from_key(name).ok_or_else(|| {
-        PyValueError::new_err(format!(
-            "name: unknown figure {name:?}; known: {}",
-            FigureName::ALL.map(FigureName::key).join(", ")
-        ))
-    })?;
+    let figure = by_key("name", name, &FigureName::ALL, FigureName::key)?;
     let config = CurveConfig::new(near, far, fov_degrees).map_err(|e| value_error(&e))?;
     let curves = py
         .detach(|| compute(figure, &config))

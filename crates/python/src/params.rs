@@ -20,6 +20,26 @@ pub(crate) fn value_error(error: &ParamError) -> PyErr {
     PyValueError::new_err(format!("{}: {error}", error.parameter()))
 }
 
+/// The item of `all` whose key (`key_of`) is `key`, or a `ValueError` naming `what` and listing the
+/// known keys.
+pub(crate) fn by_key<T: Copy>(
+    what: &str,
+    key: &str,
+    all: &[T],
+    key_of: impl Fn(T) -> &'static str,
+) -> PyResult<T> {
+    all.iter()
+        .copied()
+        .find(|t| key_of(*t) == key)
+        .ok_or_else(|| {
+            let known: Vec<&str> = all.iter().map(|t| key_of(*t)).collect();
+            PyValueError::new_err(format!(
+                "{what}: unknown {key:?}; known: {}",
+                known.join(", ")
+            ))
+        })
+}
+
 /// `f` of the `i`-th elements of `args` for every `i`, the GIL released while it runs.
 fn elementwise<'py, const N: usize>(
     py: Python<'py>,
@@ -150,12 +170,7 @@ pub(crate) fn cad_n_prime<'py>(
     half_fov: PyReadonlyArray1<'py, f64>,
     gamma: PyReadonlyArray1<'py, f64>,
 ) -> PyResult<Bound<'py, PyArray1<f64>>> {
-    let falloff = Falloff::from_key(falloff).ok_or_else(|| {
-        PyValueError::new_err(format!(
-            "falloff: unknown {falloff:?}; known: {}",
-            Falloff::ALL.map(Falloff::key).join(", ")
-        ))
-    })?;
+    let falloff = by_key("falloff", falloff, &Falloff::ALL, Falloff::key)?;
     elementwise(
         py,
         [near, far, half_fov, gamma],
@@ -225,12 +240,7 @@ pub(crate) fn rule_lambda<'py>(
     half_fov: PyReadonlyArray1<'py, f64>,
     gamma: PyReadonlyArray1<'py, f64>,
 ) -> PyResult<Bound<'py, PyArray1<f64>>> {
-    let rule = ParameterRule::from_key(rule).ok_or_else(|| {
-        PyValueError::new_err(format!(
-            "rule: unknown {rule:?}; known: {}",
-            ParameterRule::ALL.map(ParameterRule::key).join(", ")
-        ))
-    })?;
+    let rule = by_key("rule", rule, &ParameterRule::ALL, ParameterRule::key)?;
     elementwise(
         py,
         [near, far, half_fov, gamma],
