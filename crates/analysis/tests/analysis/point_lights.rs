@@ -95,3 +95,66 @@ fn a_study_refuses_techniques_that_cannot_serve_a_point_light() {
         "lispsm cannot serve a point light; techniques for point lights: cube, dual-paraboloid, psm"
     );
 }
+
+/// Claim: a point light's range bounds what it lights: the truth marks the visible points beyond
+/// it as outside the light (not counted as misclassified), none within it, and every cube face's
+/// far plane lies within the range.
+#[test]
+fn a_point_lights_range_bounds_the_truth_and_the_maps() {
+    let mut scene = chess_point();
+    let SceneLight::Point { position, .. } = scene.lights[0] else {
+        unreachable!("chess_point has a point light")
+    };
+    let (eye, _) = shadowlab_shadow::eye_pass(&scene).unwrap();
+    // Halfway between the nearest and the farthest visible point.
+    let distances = eye
+        .triangle
+        .iter()
+        .zip(&eye.position)
+        .filter(|(t, _)| **t != shadowlab_raster::NO_TRIANGLE)
+        .map(|(_, p)| (*p - position).length());
+    let (near, far) = distances.fold((f64::INFINITY, 0.0_f64), |(lo, hi), d| {
+        (lo.min(d), hi.max(d))
+    });
+    let range = 0.5 * (near + far);
+    scene.lights[0] = SceneLight::Point {
+        position,
+        range: Some(range),
+    };
+    let bvh = shadowlab_analysis::truth::scene_bvh(&scene).unwrap();
+    let truth = shadowlab_analysis::truth::exact_truth(&scene, &eye, &bvh).unwrap();
+    let (mut beyond, mut within) = (0, 0);
+    for (pixel, &triangle) in eye.triangle.iter().enumerate() {
+        if triangle == shadowlab_raster::NO_TRIANGLE {
+            continue;
+        }
+        let far = (eye.position[pixel] - position).length() > range;
+        assert_eq!(truth.outside_cone[0][pixel], far, "pixel {pixel}");
+        if far {
+            beyond += 1;
+        } else {
+            within += 1;
+        }
+    }
+    assert!(
+        beyond > 100 && within > 100,
+        "{beyond} beyond, {within} within"
+    );
+    let partitions = shadowlab_shadow::plan_light(
+        &scene,
+        &scene.lights[0],
+        &shadowlab_shadow::PlanOptions::new(Technique::Cube),
+        None,
+        256,
+        None,
+    )
+    .unwrap();
+    for partition in &partitions {
+        let shadowlab_shadow::ShadowMapping::Projective(mapping) = &partition.setup.mapping else {
+            panic!("a cube face is projective")
+        };
+        // GL's projection: far = m32/(m22 + 1).
+        let (a, b) = (mapping.projection().z_axis.z, mapping.projection().w_axis.z);
+        assert!(b / (a + 1.0) <= range * (1.0 + 1e-12));
+    }
+}
