@@ -17,9 +17,9 @@
 //!   shadowlab wrote measure what rendering does; a perturbed map as its rule predicts; shimmer as
 //!   `temporal`'s;
 //! - `sweep`: the logarithmic map's misclassified pixels continuous across γ = φ and at γ = 0;
-//! - `point_lights`: the cube map against the exact truth, converging with resolution; the range
-//!   bounding truth and maps; a
-//!   technique that cannot serve a point light is its setting's error;
+//! - `point_lights`: the cube and paraboloid maps against the exact truth, converging with
+//!   resolution; the range bounding truth and maps; a study refusing a technique that cannot
+//!   serve a point light;
 //! - `temporal`: the camera walk, and a frame where the optimizer keeps the initial map;
 //! - `view_axis`: measured on the matrices against the closed form at 90°;
 //! - `support`: scenes, hand-built eye images, the seeded configuration.

@@ -1,6 +1,6 @@
-//! Point lights against the exact truth: the cube map's misclassified pixels shrink with its
-//! resolution, their causes sum to them, and the study reports a technique that cannot serve a
-//! point light as that setting's error.
+//! Point lights against the exact truth: the cube and paraboloid maps' misclassified pixels shrink
+//! with their resolution and their causes sum to them, the range bounds truth and maps, and a study
+//! refuses a technique that cannot serve a point light before any work.
 
 use shadowlab_analysis::study::{self, StudyOptions};
 use shadowlab_raster::DepthFormat;
