@@ -4,6 +4,7 @@
 //! the GIL released while the Rust code runs. Errors of bad input are Python's `ValueError`,
 //! naming the parameter.
 
+mod arrays;
 mod curves;
 mod params;
 mod scene;

@@ -4,7 +4,9 @@
 use std::path::PathBuf;
 
 use glam::DVec3;
-use numpy::{PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray2};
+use numpy::{PyArray1, PyArray2, PyReadonlyArray2};
+
+use crate::arrays::{matrix, vectors};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -185,13 +187,10 @@ impl Scene {
         dict.set_item("far", camera.projection.far())?;
         dict.set_item("width", camera.width)?;
         dict.set_item("height", camera.height)?;
-        dict.set_item(
-            "view",
-            crate::study::matrix(py, &camera.pose.view_matrix())?,
-        )?;
+        dict.set_item("view", matrix(py, &camera.pose.view_matrix())?)?;
         dict.set_item(
             "projection",
-            crate::study::matrix(
+            matrix(
                 py,
                 &camera
                     .projection
@@ -281,14 +280,6 @@ fn rows<T: numpy::Element + Copy>(
         .into_iter()
         .map(|r| [r[0], r[1], r[2]])
         .collect())
-}
-
-/// Vectors as an N × 3 array.
-fn vectors<'py>(py: Python<'py>, values: &[DVec3]) -> Bound<'py, PyArray2<f64>> {
-    let flat: Vec<f64> = values.iter().flat_map(|v| v.to_array()).collect();
-    PyArray1::from_vec(py, flat)
-        .reshape([values.len(), 3])
-        .expect("N × 3 values")
 }
 
 /// The camera of a `camera` dict.

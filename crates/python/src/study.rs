@@ -1,7 +1,6 @@
 //! `shadowlab._native` maps and measurements: planning, shadow maps, the eye pass, the exact truth
 //! and whole analyses, each the same computation (and the same bits) as the command-line tool's.
 
-use glam::DMat4;
 use numpy::{PyArray1, PyArray2, PyArray3, PyArrayMethods};
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
@@ -15,12 +14,8 @@ use shadowlab_shadow::{
     Technique, eye_pass as shadow_eye_pass, plan_frame, render_shadows,
 };
 
+use crate::arrays::{matrix, vectors};
 use crate::scene::Scene;
-
-/// A 4 × 4 matrix as a numpy array, row by row (`m[i, j]` is row `i`, column `j`).
-pub(crate) fn matrix<'py>(py: Python<'py>, m: &DMat4) -> PyResult<Bound<'py, PyArray2<f64>>> {
-    PyArray1::from_vec(py, m.transpose().to_cols_array().to_vec()).reshape([4, 4])
-}
 
 /// A `ValueError` naming `what`.
 fn bad(what: &str, message: impl std::fmt::Display) -> PyErr {
@@ -129,11 +124,7 @@ fn partition_dict<'py>(py: Python<'py>, partition: &Partition) -> PyResult<Bound
             ]
         }),
     )?;
-    let flat: Vec<f64> = setup.focus_body.iter().flat_map(|v| v.to_array()).collect();
-    dict.set_item(
-        "focus_body",
-        PyArray1::from_vec(py, flat).reshape([setup.focus_body.len(), 3])?,
-    )?;
+    dict.set_item("focus_body", vectors(py, &setup.focus_body))?;
     let (view, projection) = match &setup.mapping {
         ShadowMapping::Projective(m) => (
             Some(matrix(py, &m.view())?),

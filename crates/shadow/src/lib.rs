@@ -43,6 +43,7 @@ pub mod measure;
 mod omni;
 pub mod optimal;
 pub mod paraboloid;
+mod paraboloid_map;
 mod parameter;
 mod partition;
 mod plan;

@@ -4,7 +4,7 @@
 use glam::{DMat4, DVec3};
 
 use crate::logarithmic_map::LogarithmicMap;
-use crate::paraboloid::ParaboloidMap;
+use crate::paraboloid_map::ParaboloidMap;
 use crate::technique::Technique;
 
 /// How world points map to the shadow map.
