@@ -5,8 +5,8 @@ use numpy::{PyArray1, PyArray2, PyArray3, PyArrayMethods};
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use shadowlab_analysis::report::results_json;
-use shadowlab_analysis::study::{self, StudyOptions, default_techniques};
+use shadowlab_analysis::report::{filter_label, results_json, technique_label};
+use shadowlab_analysis::study::{self, Setting, StudyOptions, default_techniques};
 use shadowlab_analysis::truth::{exact_truth, scene_bvh};
 use shadowlab_raster::{DepthFormat, EyeImage, NO_TRIANGLE};
 use shadowlab_shadow::{
@@ -264,13 +264,13 @@ pub(crate) fn truth<'py>(py: Python<'py>, scene: &Scene) -> PyResult<TruthArrays
 /// `filters`, against the exact truth; returns `results.json`'s text, which the Python package
 /// parses (the same document the command writes).
 #[pyfunction]
-#[pyo3(signature = (scene, techniques=None, resolutions=None, partitions=None, filters=None, splits="practical:0.5", bias="slope:2,1e-5", focus="light", timing_runs=study::DEFAULT_TIMING_RUNS))]
+#[pyo3(signature = (scene, techniques=None, resolutions=None, partitions=None, filters=None, splits="practical:0.5", bias="slope:2,1e-5", focus="light", timing_runs=study::DEFAULT_TIMING_RUNS, pixels=false))]
 #[expect(
     clippy::too_many_arguments,
     reason = "keyword arguments, each with its default"
 )]
-pub(crate) fn analyze(
-    py: Python<'_>,
+pub(crate) fn analyze<'py>(
+    py: Python<'py>,
     scene: &Scene,
     techniques: Option<Vec<String>>,
     resolutions: Option<Vec<u32>>,
@@ -280,7 +280,8 @@ pub(crate) fn analyze(
     bias: &str,
     focus: &str,
     timing_runs: usize,
-) -> PyResult<String> {
+    pixels: bool,
+) -> PyResult<(String, Vec<PixelArrays<'py>>)> {
     let scene = &scene.inner;
     let techniques = match techniques {
         Some(specs) => specs
@@ -311,8 +312,63 @@ pub(crate) fn analyze(
         focus: FocusPolicy::parse(focus).map_err(|e| bad("focus", e))?,
         timing_runs,
     };
+    // Per combination, when asked for: each light's lit fraction per pixel and the footprint per
+    // pixel, kept as the study shows them (`study::run_observed`) before it lets them go.
+    let mut kept: Vec<(Setting, Vec<Vec<f64>>, Vec<f64>)> = Vec::new();
     let study = py
-        .detach(|| study::run(scene, &options, |_, _, _| {}))
+        .detach(|| {
+            study::run_observed(
+                scene,
+                &options,
+                |_, _, _| {},
+                |observed| -> Result<(), shadowlab_analysis::AnalysisError> {
+                    if pixels {
+                        let footprints = observed
+                            .footprints
+                            .iter()
+                            .map(|f| f.map_or(f64::NAN, |f| f.total))
+                            .collect();
+                        kept.push((
+                            observed.setting.clone(),
+                            observed.shadows.lit.clone(),
+                            footprints,
+                        ));
+                    }
+                    Ok(())
+                },
+            )
+        })
         .map_err(|e| PyValueError::new_err(e.to_string()))?;
-    Ok(serde_json::to_string(&results_json(&study)).expect("plain data"))
+    let (w, h) = (scene.camera.width as usize, scene.camera.height as usize);
+    let arrays = kept
+        .into_iter()
+        .map(|(setting, lit, footprint)| {
+            let lights = lit.len();
+            Ok((
+                technique_label(setting.technique),
+                setting.resolution,
+                setting.partitions,
+                filter_label(&setting.filter),
+                PyArray1::from_vec(py, lit.concat()).reshape([lights, h, w])?,
+                PyArray1::from_vec(py, footprint).reshape([h, w])?,
+            ))
+        })
+        .collect::<PyResult<Vec<_>>>()?;
+    Ok((
+        serde_json::to_string(&results_json(&study)).expect("plain data"),
+        arrays,
+    ))
 }
+
+/// One combination's per-pixel results: its technique, side, partitions and filter (as
+/// `results.json` labels them), each light's lit fraction per pixel (lights × H × W; 1 where
+/// nothing is seen), and the texel footprint per pixel (H × W, pixels per texel; NaN where nothing
+/// is seen or the map has no derivative there).
+type PixelArrays<'py> = (
+    String,
+    u32,
+    usize,
+    String,
+    Bound<'py, PyArray3<f64>>,
+    Bound<'py, PyArray2<f64>>,
+);

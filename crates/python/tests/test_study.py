@@ -152,3 +152,21 @@ def test_scene_files_of_every_kind_load(tmp_path):
     assert sl.Scene.load(toml).lights == [{"kind": "point", "position": [0.2, 1.0, 0.2], "range": None}]
     with pytest.raises(ValueError, match="^path"):
         sl.Scene.load(tmp_path / "missing.toml")
+
+
+def test_analyze_keeps_every_combinations_pixels_when_asked():
+    scene = small()
+    analysis = sl.analyze(scene, ["lispsm", "uniform"], [128, 256], timing_runs=1, pixels=True)
+    lit_truth, visible = sl.truth(scene)
+    assert len(analysis.pixels) == 4
+    for record in analysis.records:
+        key = (record["setting_technique"], record["setting_resolution"], record["setting_maps"], record["setting_filter"])
+        arrays = analysis.pixels[key]
+        lit, footprint = arrays["lit"], arrays["footprint"]
+        assert lit.shape == (1, 72, 96) and footprint.shape == (72, 96)
+        assert np.all(lit[0][~visible] == 1.0) and np.all(np.isnan(footprint[~visible]))
+        # The per-pixel lookups reproduce the record's counts against the truth.
+        classified = lit[0] >= 0.5
+        wrong = visible & (classified != lit_truth[0])
+        assert wrong.sum() == record["misclassified"], key
+    assert sl.analyze(scene, ["lispsm"], [128], timing_runs=1).pixels == {}

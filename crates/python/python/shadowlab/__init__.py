@@ -28,11 +28,21 @@ __all__ = ["Analysis", "Scene", "analyze", "curves", "eye_pass", "params", "plan
 class Analysis:
     """A whole analysis: ``results`` is the document ``shadowlab analyze`` writes to
     ``results.json``; ``records`` one flat dict per combination, which ``pandas.DataFrame(...)``
-    takes as it is (nested keys joined by ``_``: ``footprint_total_p99``, ``ms_total``)."""
+    takes as it is (nested keys joined by ``_``: ``footprint_total_p99``, ``ms_total``).
 
-    def __init__(self, results: dict[str, Any]):
+    ``pixels`` (with ``analyze(..., pixels=True)``) maps each combination, keyed as its record's
+    ``(setting_technique, setting_resolution, setting_maps, setting_filter)``, to its per-pixel
+    arrays: ``lit``, each light's lit fraction (lights × H × W, 1 where nothing is seen), and
+    ``footprint``, the texel footprint in pixels per texel (H × W, NaN where nothing is seen or
+    the map has no derivative there); row 0 at the bottom."""
+
+    def __init__(self, results: dict[str, Any], pixels: Sequence[tuple] = ()):
         self.results = results
         self.records = [_flat(m) for m in results["measurements"]]
+        self.pixels = {
+            (technique, resolution, maps, filter_): {"lit": lit, "footprint": footprint}
+            for technique, resolution, maps, filter_, lit, footprint in pixels
+        }
 
     def __repr__(self) -> str:
         return f"Analysis({self.results['scene']!r}: {len(self.records)} combinations)"
@@ -60,12 +70,14 @@ def analyze(
     bias: str = "slope:2,1e-5",
     focus: str = "light",
     timing_runs: int = 3,
+    pixels: bool = False,
 ) -> Analysis:
     """Every combination of ``techniques`` (default: ``shadowlab analyze``'s for the scene's
     lights), ``resolutions`` (default 750–2000), ``partitions`` (default 1) and ``filters``
     (default ``nearest``), measured against the exact truth, as ``shadowlab analyze`` measures
-    them; technique and filter specs are the command line's (``lispsm:minimax``, ``pcf:3``)."""
-    text = _analyze(
+    them; technique and filter specs are the command line's (``lispsm:minimax``, ``pcf:3``).
+    With ``pixels``, every combination's per-pixel arrays are kept too (:class:`Analysis`)."""
+    text, arrays = _analyze(
         scene,
         techniques=None if techniques is None else list(techniques),
         resolutions=None if resolutions is None else [int(r) for r in resolutions],
@@ -75,5 +87,6 @@ def analyze(
         bias=bias,
         focus=focus,
         timing_runs=int(timing_runs),
+        pixels=bool(pixels),
     )
-    return Analysis(json.loads(text))
+    return Analysis(json.loads(text), arrays)

@@ -84,4 +84,5 @@ def analyze(
     bias: str = "slope:2,1e-5",
     focus: str = "light",
     timing_runs: int = 3,
-) -> str: ...
+    pixels: bool = False,
+) -> tuple[str, list[tuple[str, int, int, str, npt.NDArray[np.float64], npt.NDArray[np.float64]]]]: ...
