@@ -131,25 +131,42 @@ impl ShadowMap {
                 ShadowMapping::Logarithmic(map) => Some(map.texel_row(y)),
                 _ => None,
             };
-            let ray_of = |i: usize| match (mapping, &row) {
-                (_, Some(row)) => Some(row.ray(centre(i))),
-                (ShadowMapping::Paraboloid(map), None) => map.texel_ray(centre(i), y),
-                _ => None,
-            };
             // The row's rays in texel order, neighbours side by side, in batches of at most one
-            // work item of the batch query (so that it runs on this thread, not split).
+            // work item of the batch query (so that it runs on this thread, not split). Every
+            // texel of the logarithmic map has a ray; a paraboloid's texels off its disk have none,
+            // and only then is the list of the rays' texels kept.
             for first in (0..side).step_by(RAY_CHUNK) {
-                let mut texels = Vec::with_capacity(RAY_CHUNK);
-                let mut rays = Vec::with_capacity(RAY_CHUNK);
-                for i in first..side.min(first + RAY_CHUNK) {
-                    if let Some((from, to)) = ray_of(i) {
-                        texels.push(i);
-                        rays.push(Ray::new(from, to - from)?);
+                let chunk = first..side.min(first + RAY_CHUNK);
+                let mut rays = Vec::with_capacity(chunk.len());
+                let mut texels = Vec::new();
+                match (mapping, &row) {
+                    (_, Some(row)) => {
+                        for i in chunk {
+                            let (from, to) = row.ray(centre(i));
+                            rays.push(Ray::new(from, to - from)?);
+                        }
                     }
+                    (ShadowMapping::Paraboloid(map), None) => {
+                        for i in chunk {
+                            if let Some((from, to)) = map.texel_ray(centre(i), y) {
+                                texels.push(i);
+                                rays.push(Ray::new(from, to - from)?);
+                            }
+                        }
+                    }
+                    _ => {}
                 }
+                let texel = |k: usize| {
+                    if texels.is_empty() {
+                        first + k
+                    } else {
+                        texels[k]
+                    }
+                };
                 let firsts = bvh.closest_hits(&rays, 0.0, 1.0);
-                for ((texel, ray), hit) in texels.into_iter().zip(&rays).zip(firsts) {
+                for (k, (ray, hit)) in rays.iter().zip(firsts).enumerate() {
                     let Some(hit) = hit else { continue };
+                    let texel = texel(k);
                     nearest[texel] = store(ray, hit.t);
                     // The next surface: beyond the first by more than SAME_SURFACE, so that the
                     // first surface's neighbour across a shared edge (hit a few ulps further) is
