@@ -652,7 +652,7 @@ pub(crate) fn border_fraction(value: f64) -> Result<f64, String> {
 /// The most descent iterations a user may ask of the optimizer.
 pub(crate) const MAX_OPTIMAL_ITERATIONS: u32 = 1000;
 
-/// The techniques `sweep` measures by default for directional and spot lights.
+/// The techniques `sweep-angle` measures by default for directional and spot lights.
 pub(crate) const SWEEP_TECHNIQUES: &str = "uniform,psm,lispsm,lispsm:minimax,lispsm:filament,lispsm:ogre,lispsm:osg,lispsm:osg_vdsm,optimal";
 
 /// The techniques `temporal` measures by default for directional and spot lights.

@@ -1,7 +1,8 @@
 //! # shadowlab-shadow: the shadow-map techniques of the five papers
 //!
 //! A technique turns the eye, a light and the scene bounds into a light set-up: the view and
-//! projection (or, for the logarithmic map, the exact mapping) the shadow map is rendered with.
+//! projection (or, for the logarithmic and paraboloid maps, the exact mapping) the shadow map is
+//! rendered with.
 //!
 //! | technique | paper | module |
 //! |---|---|---|
@@ -14,6 +15,11 @@
 //! | scene-optimized (`optimal`) | CG06 Algorithm 1 (Chong & Gortler 2006) | [`optimal`] |
 //! | engines' cascades (`bevy`, `filament`, `godot`, `babylon`, `threejs`, `unity`, `unreal`) | the engines' sources, `docs/engine-sources.md` | [`presets`], [`cascades`]; selection, blending and fading: `selection` |
 //! | sample distribution (z-partitions from the eye pass's samples) | Lauritzen, Salvi & Lefohn, I3D 2011 | [`sdsm`] |
+//! | cube map of a point light (`cube`) | Gerasimov, GPU Gems ch. 12, 2004; OpenGL 4.6 Table 8.19 | [`cube`], `omni` |
+//! | dual-paraboloid map of a point light (`dual-paraboloid`) | Brabec, Annen & Seidel, CGI 2002 | [`paraboloid`], `omni` |
+//!
+//! Which kinds of light each technique serves: `Technique::check_light` (a point light: cube,
+//! dual-paraboloid and PSM; the omnidirectional maps serve point lights only).
 //!
 //! Every light-space technique (uniform, LiSPSM, logarithmic) works in LiSPSM's light space
 //! (`shadowlab_hull::LightSpace`: y toward the light, the viewer looking down −z), for spot lights
