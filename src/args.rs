@@ -10,6 +10,8 @@ use shadowlab_raster::{DepthFormat, MAX_TARGET_SIZE};
 use shadowlab_shadow::optimal::{BORDER, INITIAL_MAP_RESOLUTION, ITERATIONS, READBACK_SIZE};
 use shadowlab_shadow::{Bias, Filter, FocusPolicy, Splits, Technique};
 
+use shadowlab_sweep::Shard;
+
 use crate::memory::Bytes;
 
 /// The most timing runs per combination `analyze` takes.
@@ -58,6 +60,82 @@ pub(crate) enum Command {
     /// matrices, map size, format, bias, filter, optionally its depth images) against the exact
     /// truth, as analyze measures a technique; over several frames, its shimmer too.
     Evaluate(EvaluateArgs),
+    /// Run a study spec (TOML: scenes × techniques × resolutions × partitions × filters × light
+    /// directions × camera poses), whole or one shard of it, into a resumable sweep directory;
+    /// or print its size (--dry-run), an example spec (--example), or a Slurm job array for it
+    /// (--slurm). docs/cluster.md.
+    Sweep(SweepSpecArgs),
+    /// Merge the cells of one sweep from one or more sweep directories (its shards) into one
+    /// table (CSV, Parquet) and one report: the same, timings aside, as the sweep run whole.
+    Merge(MergeArgs),
+}
+
+/// Arguments of `shadowlab sweep`.
+#[derive(Debug, Args)]
+pub(crate) struct SweepSpecArgs {
+    /// The sweep spec (TOML; `shadowlab sweep --example` prints one).
+    #[arg(value_name = "SPEC", required_unless_present = "example")]
+    pub(crate) spec: Option<PathBuf>,
+    /// Print a small commented spec that runs as it is, and exit.
+    #[arg(long, conflicts_with_all = ["spec", "dry_run", "shard", "slurm", "out"])]
+    pub(crate) example: bool,
+    /// Print the number of frames and cells and the estimated work (per shard with --shard or
+    /// --shards), and run nothing.
+    #[arg(long)]
+    pub(crate) dry_run: bool,
+    /// The sweep directory: cells/ (one result per cell), shard-I-of-N/ (each finished shard's
+    /// table) and, for a whole run, merged/. Rerunning into it resumes. Default:
+    /// out/sweep/SPEC-NAME.
+    #[arg(long, value_name = "DIR")]
+    pub(crate) out: Option<PathBuf>,
+    /// Run only shard I of N (0-based): a deterministic, cost-balanced share of the cells.
+    #[arg(long, value_name = "I/N", value_parser = shard_spec, conflicts_with = "slurm")]
+    pub(crate) shard: Option<Shard>,
+    /// Write a Slurm job array for the sweep (DIR/slurm/array.sbatch, one task per shard; the
+    /// merge as a dependent job, merge.sbatch; submit.sh submits both) and run nothing.
+    #[arg(long, requires = "shards")]
+    pub(crate) slurm: bool,
+    /// The number of shards of --slurm or --dry-run.
+    #[arg(long, value_name = "N", allow_negative_numbers = true, value_parser = shard_count)]
+    pub(crate) shards: Option<usize>,
+    /// An extra `#SBATCH` option for the job array's script, e.g. `--partition=short` or
+    /// `--time=01:00:00` (repeatable).
+    #[arg(
+        long,
+        value_name = "OPTION",
+        requires = "slurm",
+        allow_hyphen_values = true
+    )]
+    pub(crate) sbatch_option: Vec<String>,
+}
+
+/// Arguments of `shadowlab merge`.
+#[derive(Debug, Args)]
+pub(crate) struct MergeArgs {
+    /// Sweep directories holding the cells (one per shard, or one shared).
+    #[arg(value_name = "DIR", required = true)]
+    pub(crate) dirs: Vec<PathBuf>,
+    /// Directory to write the merged table and report into (an output set).
+    #[arg(long, value_name = "DIR")]
+    pub(crate) out: PathBuf,
+}
+
+/// A shard, `I/N` ([`Shard::parse`]).
+fn shard_spec(text: &str) -> Result<Shard, String> {
+    Shard::parse(&value_not_flag(text)?)
+}
+
+/// A shard count in `1..=MAX_SHARDS`.
+fn shard_count(text: &str) -> Result<usize, String> {
+    text.parse::<usize>()
+        .ok()
+        .filter(|n| (1..=shadowlab_sweep::shard::MAX_SHARDS).contains(n))
+        .ok_or_else(|| {
+            format!(
+                "`{text}` is not a shard count in 1..={}",
+                shadowlab_sweep::shard::MAX_SHARDS
+            )
+        })
 }
 
 /// Arguments of `shadowlab evaluate`.

@@ -24,6 +24,7 @@ mod render_command;
 mod render_mesh_command;
 mod shadow_settings;
 mod staging;
+mod sweep_command;
 
 use std::ffi::OsString;
 use std::process::ExitCode;
@@ -56,6 +57,8 @@ where
         Command::SweepAngle(args) => analyze_command::sweep_angle(&args),
         Command::Evaluate(args) => evaluate_command::run(&args),
         Command::Temporal(args) => analyze_command::temporal(&args),
+        Command::Sweep(args) => sweep_command::sweep(&args),
+        Command::Merge(args) => sweep_command::merge(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -501,6 +501,107 @@ fn time_from_runs(outcome: &mut Outcome, runs: &[Timings]) {
     outcome.time_spread = (total(slowest) - total(fastest)) / 2;
 }
 
+/// What every combination of a frame is measured against, made once per frame: the eye pass,
+/// the scene's ray-casting hierarchy and the exact truth.
+#[derive(Debug)]
+pub struct Ground {
+    /// The eye pass.
+    pub eye: EyePass,
+    /// The scene's hierarchy (the truth's, the logarithmic map's and the attribution's rays).
+    pub bvh: Bvh,
+    /// The exact truth.
+    pub truth: Truth,
+    /// The time the three took.
+    pub truth_time: Duration,
+}
+
+impl Ground {
+    /// The ground of `scene`'s frame.
+    ///
+    /// # Errors
+    /// The truth's errors (bad scene geometry).
+    pub fn new(scene: &Scene) -> Result<Self, AnalysisError> {
+        let start = Instant::now();
+        let eye = EyePass::new(scene)?;
+        let bvh = scene_bvh(scene)?;
+        let truth = exact_truth(scene, &eye.image, &bvh)?;
+        Ok(Self {
+            eye,
+            bvh,
+            truth,
+            truth_time: start.elapsed(),
+        })
+    }
+}
+
+/// A combination's first run, as [`measure_setting`] shows it before letting it go.
+#[derive(Clone, Copy, Debug)]
+pub struct FirstRun<'a> {
+    /// Its maps and lookups.
+    pub shadows: &'a Shadows,
+    /// The texel footprint per pixel (first light).
+    pub footprints: &'a [Option<Footprint>],
+    /// Its errors' causes per pixel.
+    pub attribution: &'a Attribution,
+}
+
+/// Measures one combination of `options` on the frame `ground` was made for: its shadows (every
+/// timing run), errors, causes, footprints and a filterable map's leaks, showing the first run to
+/// `first_run` before its buffers are dropped. A technique not defined for the frame is a
+/// measurement too (its reason).
+///
+/// # Errors
+/// Rendering failures other than a technique being undefined, and `first_run`'s.
+pub fn measure_setting<E: From<AnalysisError>>(
+    scene: &Scene,
+    options: &StudyOptions,
+    setting: &Setting,
+    ground: &Ground,
+    first_run: impl FnOnce(&FirstRun<'_>) -> Result<(), E>,
+) -> Result<Measurement, E> {
+    let (eye, truth, bvh) = (&ground.eye, &ground.truth, &ground.bvh);
+    let outcome = match render(scene, options, setting, eye, bvh) {
+        Ok(shadows) => {
+            let footprints = footprinted(scene, &eye.image, &shadows);
+            let attribution = attributed(
+                scene,
+                &eye.image,
+                truth,
+                &shadows,
+                |_, _| setting.filter,
+                bvh,
+            )?;
+            first_run(&FirstRun {
+                shadows: &shadows,
+                footprints: &footprints.0,
+                attribution: &attribution.0,
+            })?;
+            let leaks = leaked(scene, &eye.image, truth, &shadows, &setting.filter);
+            let mut measured = outcome(truth, &shadows, &footprints, &attribution, leaks);
+            let mut runs = vec![shadows.timings];
+            // The timing runs need none of the first run's buffers.
+            drop((shadows, footprints, attribution));
+            for _ in 1..options.timing_runs {
+                runs.push(
+                    render(scene, options, setting, eye, bvh)
+                        .map_err(AnalysisError::from)?
+                        .timings,
+                );
+            }
+            time_from_runs(&mut measured, &runs);
+            Ok(measured)
+        }
+        Err(e) => match e.undefined_reason() {
+            Some(reason) => Err(reason),
+            None => return Err(AnalysisError::from(e).into()),
+        },
+    };
+    Ok(Measurement {
+        setting: setting.clone(),
+        outcome,
+    })
+}
+
 /// Runs the study, calling `progress(done, total, next)` before each combination (`next`, the one
 /// about to be measured) and once at the end (`None`).
 ///
@@ -547,14 +648,10 @@ pub fn run_observed<E: From<AnalysisError>>(
             technique.check_light(&light).map_err(AnalysisError::from)?;
         }
     }
-    let start = Instant::now();
-    let eye = EyePass::new(scene).map_err(AnalysisError::from)?;
-    let bvh = scene_bvh(scene)?;
-    let truth = exact_truth(scene, &eye.image, &bvh)?;
-    let truth_time = start.elapsed();
+    let ground = Ground::new(scene)?;
     let map_truth = if options.map_truth {
-        let approximate = map_truth(scene, &eye.image, MAP_TRUTH_RESOLUTION)?;
-        Some(disagreement(&truth, &approximate))
+        let approximate = map_truth(scene, &ground.eye.image, MAP_TRUTH_RESOLUTION)?;
+        Some(disagreement(&ground.truth, &approximate))
     } else {
         None
     };
@@ -566,64 +663,33 @@ pub fn run_observed<E: From<AnalysisError>>(
     let mut pictures = Vec::new();
     for (k, setting) in all.iter().enumerate() {
         progress(k, all.len(), Some(setting));
-        let outcome = match render(scene, options, setting, &eye, &bvh) {
-            Ok(shadows) => {
-                let footprints = footprinted(scene, &eye.image, &shadows);
-                let attribution = attributed(
-                    scene,
-                    &eye.image,
-                    &truth,
-                    &shadows,
-                    |_, _| setting.filter,
-                    &bvh,
-                )?;
-                let pictured = options.pictures_at == Some(setting.resolution)
-                    && options.partitions.first() == Some(&setting.partitions)
-                    && options.filters.first() == Some(&setting.filter);
-                if pictured {
-                    pictures.push(Pictures::of(
-                        setting,
-                        scene,
-                        (&eye.image, &truth),
-                        &shadows,
-                        &footprints.0,
-                        &attribution.0,
-                    ));
-                }
-                observe(&Observed {
+        let measurement = measure_setting(scene, options, setting, &ground, |first| {
+            let pictured = options.pictures_at == Some(setting.resolution)
+                && options.partitions.first() == Some(&setting.partitions)
+                && options.filters.first() == Some(&setting.filter);
+            if pictured {
+                pictures.push(Pictures::of(
                     setting,
-                    eye: &eye,
-                    truth: &truth,
-                    shadows: &shadows,
-                    footprints: &footprints.0,
-                })?;
-                let leaks = leaked(scene, &eye.image, &truth, &shadows, &setting.filter);
-                let mut measured = outcome(&truth, &shadows, &footprints, &attribution, leaks);
-                let mut runs = vec![shadows.timings];
-                // The timing runs need none of the first run's buffers.
-                drop((shadows, footprints, attribution));
-                for _ in 1..options.timing_runs {
-                    runs.push(
-                        render(scene, options, setting, &eye, &bvh)
-                            .map_err(AnalysisError::from)?
-                            .timings,
-                    );
-                }
-                time_from_runs(&mut measured, &runs);
-                Ok(measured)
+                    scene,
+                    (&ground.eye.image, &ground.truth),
+                    first.shadows,
+                    first.footprints,
+                    first.attribution,
+                ));
             }
-            Err(e) => match e.undefined_reason() {
-                Some(reason) => Err(reason),
-                None => return Err(AnalysisError::from(e).into()),
-            },
-        };
-        measurements.push(Measurement {
-            setting: setting.clone(),
-            outcome,
-        });
+            observe(&Observed {
+                setting,
+                eye: &ground.eye,
+                truth: &ground.truth,
+                shadows: first.shadows,
+                footprints: first.footprints,
+            })
+        })?;
+        measurements.push(measurement);
     }
     progress(all.len(), all.len(), None);
-    let visible = eye
+    let visible = ground
+        .eye
         .image
         .triangle
         .iter()
@@ -637,10 +703,10 @@ pub fn run_observed<E: From<AnalysisError>>(
         width: scene.camera.width,
         height: scene.camera.height,
         visible: visible as u64,
-        truth_time,
+        truth_time: ground.truth_time,
         map_truth,
         measurements,
-        truth,
+        truth: ground.truth,
         pictures,
         view_axis,
     })

@@ -71,7 +71,7 @@ pub struct SweepPoint {
 /// The scene's first light moved to lie along `to_light` from the eye: a point light at its own
 /// distance from the eye (its range kept), so that γ is the angle between the view and the
 /// direction from the eye to it; any other light replaced by a directional one along `to_light`.
-fn swept_light(scene: &Scene, to_light: DVec3) -> SceneLight {
+pub fn swept_light(scene: &Scene, to_light: DVec3) -> SceneLight {
     match scene.lights.first() {
         Some(&SceneLight::Point { position, range }) => {
             let eye = scene.camera.pose.eye();
