@@ -15,6 +15,9 @@
 //!   written.
 //! * `output_cli` — output sets under faults: rerun, concurrent runs, SIGINT/SIGTERM/SIGKILL, a
 //!   failing write, a full or read-only file system, destinations not shadowlab's, hostile names.
+//! * `sweep_cli` — `shadowlab sweep` and `merge`: shards merge to the whole sweep (timings aside,
+//!   any thread count), reruns resume, incomplete or foreign results and bad specs refused, the
+//!   Slurm job array's scripts.
 //! * `warp_cli` — what a user states: `--lambda`, `--n`, `--focus`, the `[shadow]` table and its
 //!   optimizer settings, rules' inputs in `inspect`, defaults in help texts, refusals named.
 
@@ -28,4 +31,5 @@ mod point_light_cli;
 mod render_cli;
 mod render_mesh_cli;
 mod support;
+mod sweep_cli;
 mod warp_cli;
