@@ -102,14 +102,24 @@ pub(crate) fn sweep(args: &SweepSpecArgs) -> Result<(), CliError> {
     }
     let root = sweep_dir_path(args, spec_path);
     if args.slurm {
-        let shards = args.shards.expect("clap requires --shards with --slurm");
-        return write_slurm(spec_path, &root, shards, &args.sbatch_option);
+        for option in &args.sbatch_option {
+            if !option.starts_with("--") || option.contains('\n') {
+                return Err(CliError::Input(format!(
+                    "invalid --sbatch-option: `{option}` is not one sbatch long option (--name=value)"
+                )));
+            }
+        }
     }
-    let shard = args.shard.unwrap_or(Shard::ALL);
+    // A --slurm run makes the sweep directory too, so that its tasks find it theirs.
     let dir = SweepDir::create(&root, identity).map_err(|e| match e {
         SweepError::Shard(m) => CliError::Input(format!("invalid --out: {m}")),
         other => sweep_error(other),
     })?;
+    if args.slurm {
+        let shards = args.shards.expect("clap requires --shards with --slurm");
+        return write_slurm(spec_path, &root, shards, &args.sbatch_option);
+    }
+    let shard = args.shard.unwrap_or(Shard::ALL);
     // Checked before the work, so a whole run does not fail at its end.
     let merged = if args.shard.is_none() {
         Some(OutputDir::check(
@@ -204,7 +214,7 @@ fn shell_quote(text: &str) -> String {
     format!("'{}'", text.replace('\'', "'\\''"))
 }
 
-/// `--slurm`: DIR/slurm/array.sbatch (a job array, one task per shard), merge.sbatch (the merge)
+/// `--slurm` (its `options` checked): DIR/slurm/array.sbatch (a job array, one task per shard), merge.sbatch (the merge)
 /// and submit.sh (submits the array, then the merge with `--dependency=afterok` on it, and
 /// prints both job ids).
 fn write_slurm(
@@ -213,13 +223,6 @@ fn write_slurm(
     shards: usize,
     options: &[String],
 ) -> Result<(), CliError> {
-    for option in options {
-        if !option.starts_with("--") || option.contains('\n') {
-            return Err(CliError::Input(format!(
-                "invalid --sbatch-option: `{option}` is not one sbatch long option (--name=value)"
-            )));
-        }
-    }
     let exe = std::env::current_exe()
         .map_err(|e| CliError::Failure(anyhow::anyhow!("cannot find this program: {e}")))?;
     let spec = absolute(spec, "SPEC")?;

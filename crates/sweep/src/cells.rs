@@ -55,18 +55,19 @@ pub struct Plan {
     pub frame_costs: Vec<f64>,
 }
 
-/// The cost model of the estimates, nanoseconds on the machine of docs/cluster.md (one thread,
-/// release build): a frame's truth costs [`TRUTH_NS_PER_PIXEL`] per eye pixel; a cell
+/// The cost model of the estimates, nanoseconds on one thread of the machine of docs/cluster.md
+/// (release build), fitted there to `outdoor` at 512² to 2048² with uniform, LiSPSM and the
+/// logarithmic map (within 10 % of every cell): a frame's truth costs [`TRUTH_NS_PER_PIXEL`] per eye pixel; a cell
 /// [`CELL_NS_PER_PIXEL`] per eye pixel (lookups, footprints, attribution) and, per timing run,
 /// [`MAP_NS_PER_TEXEL`] per texel of its maps — [`RAY_NS_PER_TEXEL`] for the logarithmic map,
 /// which casts one exact ray per texel.
-pub const TRUTH_NS_PER_PIXEL: f64 = 400.0;
+pub const TRUTH_NS_PER_PIXEL: f64 = 170.0;
 /// See [`TRUTH_NS_PER_PIXEL`].
-pub const CELL_NS_PER_PIXEL: f64 = 300.0;
+pub const CELL_NS_PER_PIXEL: f64 = 75.0;
 /// See [`TRUTH_NS_PER_PIXEL`].
-pub const MAP_NS_PER_TEXEL: f64 = 10.0;
+pub const MAP_NS_PER_TEXEL: f64 = 6.0;
 /// See [`TRUTH_NS_PER_PIXEL`].
-pub const RAY_NS_PER_TEXEL: f64 = 250.0;
+pub const RAY_NS_PER_TEXEL: f64 = 80.0;
 
 /// A frame's estimated truth cost: its eye pixels at [`TRUTH_NS_PER_PIXEL`].
 #[must_use]

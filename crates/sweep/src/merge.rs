@@ -20,6 +20,9 @@ pub const TIME_HEADING: &str = "## Time";
 /// Width of the γ bins of the report's table, degrees.
 pub const GAMMA_BIN_DEGREES: f64 = 15.0;
 
+/// Points per degree at which the γ figure groups cells.
+const GAMMA_PLOT_RESOLUTION: f64 = 1000.0;
+
 /// The smallest value a log axis shows (0 % misclassified is drawn here).
 const LOG_FLOOR: f64 = 1e-4;
 
@@ -278,7 +281,8 @@ enum Versus {
 fn against(records: &[CellRecord], versus: Versus) -> Figure {
     let techniques = distinct(records.iter().map(|r| r.technique.clone()));
     let x_of = |r: &CellRecord| match versus {
-        Versus::Gamma => r.gamma_deg,
+        // γ to a thousandth of a degree: the same placement in two scenes differs in its last bits.
+        Versus::Gamma => (r.gamma_deg * GAMMA_PLOT_RESOLUTION).round() / GAMMA_PLOT_RESOLUTION,
         Versus::Resolution => f64::from(r.resolution),
     };
     let mut xs: Vec<f64> = records.iter().map(x_of).collect();
