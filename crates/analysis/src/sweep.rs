@@ -3,6 +3,7 @@
 //! and none may jump or produce NaN.
 
 use glam::DVec3;
+use shadowlab_hull::ViewPose;
 use shadowlab_scene::{Scene, SceneLight};
 use shadowlab_shadow::{Bias, Filter, Technique};
 use shadowlab_trace::Bvh;
@@ -37,16 +38,17 @@ pub enum Side {
     Behind,
 }
 
-/// The directional light at angle `gamma` from the view direction: in the plane of the view
-/// direction and the scene's up (+y) — or the camera's up when the view is vertical — tilted up.
+/// The directional light at angle `gamma` from the view direction of the camera `pose`: in the
+/// plane of the view direction and the scene's up (+y) — or the camera's up when the view is
+/// vertical — tilted up.
 #[must_use]
-pub fn light_at(scene: &Scene, gamma: f64, side: Side) -> DVec3 {
-    let v = scene.camera.pose.forward();
+pub fn light_at(pose: &ViewPose, gamma: f64, side: Side) -> DVec3 {
+    let v = pose.forward();
     let up = DVec3::Y - v * DVec3::Y.dot(v);
     let up = if up.length() > 1e-6 {
         up.normalize()
     } else {
-        scene.camera.pose.up()
+        pose.up()
     };
     let along = match side {
         Side::Front => v,
@@ -68,18 +70,17 @@ pub struct SweepPoint {
     pub outcome: Result<(Misclassification, f64), String>,
 }
 
-/// The scene's first light moved to lie along `to_light` from the eye: a point light at its own
-/// distance from the eye (its range kept), so that γ is the angle between the view and the
-/// direction from the eye to it; any other light replaced by a directional one along `to_light`.
-pub fn swept_light(scene: &Scene, to_light: DVec3) -> SceneLight {
-    match scene.lights.first() {
-        Some(&SceneLight::Point { position, range }) => {
-            let eye = scene.camera.pose.eye();
-            SceneLight::Point {
-                position: eye + to_light * (position - eye).length(),
-                range,
-            }
-        }
+/// A scene's first light (`first`) moved to lie along `to_light` from the `eye`: a point light at
+/// its own distance from the eye (its range kept), so that γ is the angle between the view and
+/// the direction from the eye to it; any other light replaced by a directional one along
+/// `to_light`.
+#[must_use]
+pub fn swept_light(first: Option<&SceneLight>, eye: DVec3, to_light: DVec3) -> SceneLight {
+    match first {
+        Some(&SceneLight::Point { position, range }) => SceneLight::Point {
+            position: eye + to_light * (position - eye).length(),
+            range,
+        },
         _ => SceneLight::Directional { to_light },
     }
 }
@@ -119,7 +120,12 @@ pub fn sweep(
     let total = angles.len() * techniques.len();
     for gamma in angles {
         let mut lit_scene = scene.clone();
-        lit_scene.lights = vec![swept_light(scene, light_at(scene, *gamma, side))];
+        let pose = &scene.camera.pose;
+        lit_scene.lights = vec![swept_light(
+            scene.lights.first(),
+            pose.eye(),
+            light_at(pose, *gamma, side),
+        )];
         let eye = EyePass::new(&lit_scene)?;
         let truth = exact_truth(&lit_scene, &eye.image, &bvh)?;
         for technique in techniques {

@@ -2,16 +2,12 @@
 naming the argument, and an analysis equal to the command-line tool's results.json."""
 
 import json
-import os
 import subprocess
-from pathlib import Path
 
 import numpy as np
 import pytest
 
 import shadowlab as sl
-
-ROOT = Path(__file__).resolve().parents[3]
 
 
 def small(name="outdoor", size=(96, 72)):
@@ -106,13 +102,6 @@ def test_errors_of_planning_are_value_errors():
         sl.render_map(small(), "lispsm", resolution=64, partition=3)
 
 
-def shadowlab_binary():
-    for candidate in (os.environ.get("SHADOWLAB_BIN"), ROOT / "target/release/shadowlab", ROOT / "target/debug/shadowlab"):
-        if candidate and Path(candidate).is_file():
-            return str(candidate)
-    raise AssertionError("build the shadowlab binary first (cargo build), or set SHADOWLAB_BIN")
-
-
 def without_times(value):
     if isinstance(value, dict):
         return {k: without_times(v) for k, v in value.items() if k not in ("ms", "truth_ms")}
@@ -121,10 +110,10 @@ def without_times(value):
     return value
 
 
-def test_analyze_equals_the_command_line_results(tmp_path):
+def test_analyze_equals_the_command_line_results(tmp_path, shadowlab_binary):
     out = tmp_path / "analysis"
     subprocess.run(
-        [shadowlab_binary(), "analyze", "chess-point", "--techniques", "cube,psm", "--resolutions", "256,512",
+        [shadowlab_binary, "analyze", "chess-point", "--techniques", "cube,psm", "--resolutions", "256,512",
          "--filters", "nearest,pcf:3", "--timing-runs", "1", "--out", str(out)],
         check=True, capture_output=True,
     )

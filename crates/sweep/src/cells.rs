@@ -4,12 +4,14 @@
 
 use shadowlab_analysis::study::{self, DEFAULT_TECHNIQUES, Setting, StudyOptions};
 use shadowlab_raster::DepthFormat;
-use shadowlab_scene::Scene;
+use shadowlab_scene::{Scene, SceneLight};
 use shadowlab_shadow::optimal::OptimalOptions;
 use shadowlab_shadow::{FocusPolicy, LightSource, Technique};
 
 use crate::error::SweepError;
-use crate::frames::{CameraPose, LightPlacement, camera_poses, light_placements, posed};
+use crate::frames::{
+    CameraPose, LightPlacement, camera_poses, light_placements, pose_and_lights, posed,
+};
 use crate::spec::Spec;
 
 /// One frame of the sweep.
@@ -69,6 +71,9 @@ pub const MAP_NS_PER_TEXEL: f64 = 6.0;
 /// See [`TRUTH_NS_PER_PIXEL`].
 pub const RAY_NS_PER_TEXEL: f64 = 80.0;
 
+/// The most cells a sweep may have (its plan holds every cell in memory, about 200 bytes each).
+pub const MAX_CELLS: usize = 10_000_000;
+
 /// A frame's estimated truth cost: its eye pixels at [`TRUTH_NS_PER_PIXEL`].
 #[must_use]
 pub fn frame_cost(scene: &Scene) -> f64 {
@@ -122,10 +127,22 @@ impl Plan {
     ///
     /// # Errors
     /// [`SweepError::Scene`] if a pose is degenerate or a technique does not serve a scene's light
-    /// (naming both).
+    /// (naming both); [`SweepError::Spec`] if the sweep has more than [`MAX_CELLS`] cells.
     pub fn new(spec: &Spec, scenes: Vec<(String, Scene)>) -> Result<Self, SweepError> {
         let poses = camera_poses(&spec.cameras);
         let placements = light_placements(&spec.lights);
+        let cells_of = |scene: &Scene| {
+            (poses.len() * placements.len())
+                .saturating_mul(study::settings(&scene_options(spec, scene)).len())
+        };
+        let count = scenes
+            .iter()
+            .fold(0usize, |n, (_, scene)| n.saturating_add(cells_of(scene)));
+        if count > MAX_CELLS {
+            return Err(SweepError::Spec(format!(
+                "the sweep has {count} cells, more than {MAX_CELLS}: split it into several specs"
+            )));
+        }
         let mut frames = Vec::new();
         let mut cells = Vec::new();
         let mut frame_costs = Vec::new();
@@ -134,18 +151,19 @@ impl Plan {
             let scene_options = scene_options(spec, scene);
             for (c, pose) in poses.iter().enumerate() {
                 for (l, placement) in placements.iter().enumerate() {
-                    let framed = posed(scene, *pose, *placement)?;
-                    check_lights(label, &framed, &scene_options.techniques)?;
+                    // The frame's lights only: a frame's scene is made when it is measured.
+                    let (_, lights) = pose_and_lights(scene, *pose, *placement)?;
+                    check_lights(label, &lights, &scene_options.techniques)?;
                     let frame = frames.len();
                     for setting in study::settings(&scene_options) {
                         cells.push(Cell {
                             index: cells.len(),
                             frame,
-                            cost: cell_cost(&framed, &setting, spec.timing_runs),
+                            cost: cell_cost(scene, &setting, spec.timing_runs),
                             setting,
                         });
                     }
-                    frame_costs.push(frame_cost(&framed));
+                    frame_costs.push(frame_cost(scene));
                     frames.push(Frame {
                         scene: s,
                         camera: c,
@@ -183,8 +201,12 @@ impl Plan {
 }
 
 /// Refuses a technique that cannot serve a frame's light (a cube map for a directional light).
-fn check_lights(label: &str, scene: &Scene, techniques: &[Technique]) -> Result<(), SweepError> {
-    for (k, light) in scene.lights.iter().enumerate() {
+fn check_lights(
+    label: &str,
+    lights: &[SceneLight],
+    techniques: &[Technique],
+) -> Result<(), SweepError> {
+    for (k, light) in lights.iter().enumerate() {
         let source = LightSource::from_scene(light);
         for technique in techniques {
             technique.check_light(&source).map_err(|e| {
@@ -196,4 +218,75 @@ fn check_lights(label: &str, scene: &Scene, techniques: &[Technique]) -> Result<
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use std::path::Path;
+
+    use super::*;
+    use crate::shard::{assign, loads};
+
+    fn example_plan() -> Plan {
+        let spec = Spec::parse(crate::EXAMPLE, Path::new(".")).unwrap();
+        let scenes = spec
+            .scenes
+            .iter()
+            .map(|(label, _)| {
+                (
+                    label.clone(),
+                    shadowlab_scene::builtin_scene(label).unwrap(),
+                )
+            })
+            .collect();
+        Plan::new(&spec, scenes).unwrap()
+    }
+
+    #[test]
+    fn cells_are_numbered_frame_by_frame() {
+        let plan = example_plan();
+        // 2 scenes × 1 camera × 3 lights; 4 techniques × 2 sides each.
+        assert_eq!((plan.frames.len(), plan.cells.len()), (6, 48));
+        for (k, cell) in plan.cells.iter().enumerate() {
+            assert_eq!((cell.index, cell.frame), (k, k / 8));
+            assert!(cell.cost > 0.0);
+        }
+    }
+
+    #[test]
+    fn every_cell_has_one_shard_and_the_loads_are_balanced() {
+        let plan = example_plan();
+        let largest = plan.cells.iter().map(|c| c.cost).fold(0.0, f64::max)
+            + plan.frame_costs.iter().copied().fold(0.0, f64::max);
+        for count in [1, 2, 3, 4, 7, 48, 60] {
+            let assignment = assign(&plan, count).unwrap();
+            assert_eq!(assignment, assign(&plan, count).unwrap(), "deterministic");
+            assert!(assignment.iter().all(|s| *s < count));
+            let loads = loads(&plan, &assignment, count);
+            let busy: Vec<f64> = loads.iter().copied().filter(|l| *l > 0.0).collect();
+            assert_eq!(
+                busy.len(),
+                count.min(plan.cells.len()),
+                "{count}: every shard has work"
+            );
+            let (lo, hi) = busy
+                .iter()
+                .fold((f64::INFINITY, 0.0f64), |(l, h), v| (l.min(*v), h.max(*v)));
+            // Longest processing time first: the most loaded shard was the least loaded when it
+            // took its last cell, so it exceeds any other by at most one cell and one truth.
+            assert!(hi - lo <= largest, "{count}: loads {lo}..{hi}");
+        }
+    }
+
+    #[test]
+    fn too_many_cells_are_refused() {
+        let text = "resolutions = [256, 512]\n[cameras]\nkind = \"walk\"\nframes = 100000\n[lights]\nkind = \"sphere\"\nelevations = [10.0, 20.0, 30.0, 40.0, 50.0]\nazimuths = 100";
+        let spec = Spec::parse(text, Path::new(".")).unwrap();
+        let scenes = vec![(
+            "outdoor".into(),
+            shadowlab_scene::builtin_scene("outdoor").unwrap(),
+        )];
+        let e = Plan::new(&spec, scenes).unwrap_err().to_string();
+        assert!(e.contains("split it"), "{e}");
+    }
 }

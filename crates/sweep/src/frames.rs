@@ -168,10 +168,25 @@ pub fn posed(
     camera: CameraPose,
     light: LightPlacement,
 ) -> Result<Scene, SweepError> {
+    let (pose, lights) = pose_and_lights(scene, camera, light)?;
     let mut posed = scene.clone();
+    posed.camera.pose = pose;
+    posed.lights = lights;
+    Ok(posed)
+}
+
+/// The camera pose and lights of [`posed`], without copying the scene's mesh.
+///
+/// # Errors
+/// As [`posed`].
+pub fn pose_and_lights(
+    scene: &Scene,
+    camera: CameraPose,
+    light: LightPlacement,
+) -> Result<(ViewPose, Vec<SceneLight>), SweepError> {
     let bounds = scene.bounds();
     let radius = 0.5 * (bounds.max - bounds.min).length();
-    posed.camera.pose = match camera {
+    let pose = match camera {
         CameraPose::Scene => scene.camera.pose,
         CameraPose::Walk(k) => pose_at(scene, k)
             .map_err(|e| SweepError::Scene(format!("{}: walk frame {k}: {e}", scene.name)))?,
@@ -183,21 +198,21 @@ pub fn posed(
         } => random_pose(&scene.camera.pose, radius, (seed, index), (reach, turn))?,
     };
     let to_light = match light {
-        LightPlacement::Scene => None,
-        LightPlacement::Gamma(gamma, side) => Some(light_at(
-            &posed,
+        LightPlacement::Scene => return Ok((pose, scene.lights.clone())),
+        LightPlacement::Gamma(gamma, side) => light_at(
+            &pose,
             gamma,
             match side {
                 Side::Front => shadowlab_analysis::sweep::Side::Front,
                 Side::Behind => shadowlab_analysis::sweep::Side::Behind,
             },
-        )),
-        LightPlacement::Direction(d) => Some(d),
+        ),
+        LightPlacement::Direction(d) => d,
     };
-    if let Some(to_light) = to_light {
-        posed.lights = vec![swept_light(&posed, to_light)];
-    }
-    Ok(posed)
+    Ok((
+        pose,
+        vec![swept_light(scene.lights.first(), pose.eye(), to_light)],
+    ))
 }
 
 /// The unit vector from the eye toward the frame's first light, and γ — the angle between the

@@ -40,7 +40,7 @@ fn the_logarithmic_maps_errors_are_continuous_across_phi_and_at_zero() {
     (scene.camera.width, scene.camera.height) = (160, 120);
     let pixels = f64::from(scene.camera.width * scene.camera.height);
     let eye = scene_eye(&scene);
-    let phi = eye.half_fov_toward(light_at(&scene, 0.5, Side::Front));
+    let phi = eye.half_fov_toward(light_at(&scene.camera.pose, 0.5, Side::Front));
     let step = 0.1f64.to_radians();
     let angles: Vec<f64> = (-5..=5).map(|k| phi + f64::from(k) * step).collect();
     let slack = 0.002 * pixels;
