@@ -346,3 +346,56 @@ fn slurm_scripts_are_a_job_array_and_a_dependent_merge() {
         "--sbatch-option",
     );
 }
+
+/// Claim: every light and camera generator yields the documented number of frames (a dry run
+/// counts them), and random poses run: a sweep of them measures every cell.
+#[test]
+fn generators_make_the_documented_frames() {
+    let dir = tempfile::tempdir().unwrap();
+    let spec = dir.path().join("gen.toml");
+    for (text, frames) in [
+        (
+            "[lights]\nkind = \"sphere\"\nelevations = [30.0, 90.0]\nazimuths = 5",
+            6,
+        ),
+        (
+            "[lights]\nkind = \"gamma\"\nrange = { from = 0.0, to = 90.0, steps = 4 }",
+            4,
+        ),
+        ("[cameras]\nkind = \"walk\"\nframes = 3\nevery = 10", 3),
+        (
+            "[cameras]\nkind = \"path\"\nposes = [{ eye = [0, 5, 20], target = [0, 0, 0] }, { eye = [5, 5, 20], target = [0, 0, 0] }]",
+            2,
+        ),
+        ("[cameras]\nkind = \"random\"\ncount = 2\nseed = 11", 2),
+    ] {
+        std::fs::write(
+            &spec,
+            format!("techniques = [\"uniform\"]\nresolutions = [64]\n{text}"),
+        )
+        .unwrap();
+        let dry = shadowlab(&["sweep", spec.to_str().unwrap(), "--dry-run"], None);
+        ok(&dry);
+        assert!(
+            stdout(&dry).starts_with(&format!("{frames} cells in {frames} frames")),
+            "{text}: {}",
+            stdout(&dry)
+        );
+    }
+    let out = dir.path().join("random");
+    let run = shadowlab(
+        &[
+            "sweep",
+            spec.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ],
+        None,
+    );
+    ok(&run);
+    assert!(
+        stdout(&run).contains("2 cells (2 measured now"),
+        "{}",
+        stdout(&run)
+    );
+}

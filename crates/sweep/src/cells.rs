@@ -129,7 +129,7 @@ impl Plan {
     /// [`SweepError::Scene`] if a pose is degenerate or a technique does not serve a scene's light
     /// (naming both); [`SweepError::Spec`] if the sweep has more than [`MAX_CELLS`] cells.
     pub fn new(spec: &Spec, scenes: Vec<(String, Scene)>) -> Result<Self, SweepError> {
-        let poses = camera_poses(&spec.cameras);
+        let poses = camera_poses(&spec.cameras)?;
         let placements = light_placements(&spec.lights);
         let cells_of = |scene: &Scene| {
             (poses.len() * placements.len())

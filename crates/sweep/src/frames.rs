@@ -10,7 +10,7 @@ use shadowlab_hull::ViewPose;
 use shadowlab_scene::{Scene, SceneLight};
 
 use crate::error::SweepError;
-use crate::spec::{Cameras, Lights, Side};
+use crate::spec::{Cameras, Lights, Side, gamma_angles};
 
 /// A camera pose of the spec, before it meets a scene.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -19,6 +19,8 @@ pub enum CameraPose {
     Scene,
     /// Frame `k` of the camera walk.
     Walk(usize),
+    /// A pose the spec gives.
+    Given(ViewPose),
     /// The `k`-th random pose of the seed.
     Random {
         /// The generator's seed.
@@ -44,14 +46,29 @@ pub enum LightPlacement {
 }
 
 /// The camera poses a spec names, in order.
-#[must_use]
-pub fn camera_poses(cameras: &Cameras) -> Vec<CameraPose> {
-    match *cameras {
+///
+/// # Errors
+/// [`SweepError::Spec`] if a given pose is degenerate (a checked spec's are not).
+pub fn camera_poses(cameras: &Cameras) -> Result<Vec<CameraPose>, SweepError> {
+    Ok(match cameras {
         Cameras::Scene => vec![CameraPose::Scene],
+        Cameras::Path { poses } => poses
+            .iter()
+            .enumerate()
+            .map(|(k, p)| {
+                ViewPose::look_at(
+                    DVec3::from_array(p.eye),
+                    DVec3::from_array(p.target),
+                    DVec3::from_array(p.up),
+                )
+                .map(CameraPose::Given)
+                .map_err(|e| SweepError::Spec(format!("cameras.poses[{k}]: {e}")))
+            })
+            .collect::<Result<_, _>>()?,
         Cameras::Walk { frames, every } => {
-            (0..frames).map(|k| CameraPose::Walk(k * every)).collect()
+            (0..*frames).map(|k| CameraPose::Walk(k * every)).collect()
         }
-        Cameras::Random {
+        &Cameras::Random {
             count,
             seed,
             reach,
@@ -64,7 +81,7 @@ pub fn camera_poses(cameras: &Cameras) -> Vec<CameraPose> {
                 turn: turn_degrees.to_radians(),
             })
             .collect(),
-    }
+    })
 }
 
 /// The light placements a spec names, in order: a sphere grid elevation by elevation, azimuths
@@ -73,7 +90,11 @@ pub fn camera_poses(cameras: &Cameras) -> Vec<CameraPose> {
 pub fn light_placements(lights: &Lights) -> Vec<LightPlacement> {
     match lights {
         Lights::Scene => vec![LightPlacement::Scene],
-        Lights::Gamma { degrees, side } => degrees
+        Lights::Gamma {
+            degrees,
+            range,
+            side,
+        } => gamma_angles(degrees, range.as_ref())
             .iter()
             .map(|d| LightPlacement::Gamma(d.to_radians(), *side))
             .collect(),
@@ -188,6 +209,7 @@ pub fn pose_and_lights(
     let radius = 0.5 * (bounds.max - bounds.min).length();
     let pose = match camera {
         CameraPose::Scene => scene.camera.pose,
+        CameraPose::Given(pose) => pose,
         CameraPose::Walk(k) => pose_at(scene, k)
             .map_err(|e| SweepError::Scene(format!("{}: walk frame {k}: {e}", scene.name)))?,
         CameraPose::Random {

@@ -56,8 +56,11 @@ pub enum Lights {
     /// light moved around the eye at its own distance, any other light replaced by a directional
     /// one; the scene's other lights dropped.
     Gamma {
-        /// The angles, degrees in `[0, 90]`.
+        /// The angles, degrees in `[0, 90]` (or `range`).
+        #[serde(default)]
         degrees: Vec<f64>,
+        /// Evenly spaced angles instead: `steps` from `from` to `to` inclusive.
+        range: Option<AngleRange>,
         /// Which side the light comes from: `front` (toward the viewer, the dueling frusta) or
         /// `behind`. Default: front.
         #[serde(default)]
@@ -72,6 +75,55 @@ pub enum Lights {
         /// Azimuths per elevation (≥ 1).
         azimuths: usize,
     },
+}
+
+/// Evenly spaced angles, degrees: `steps` ≥ 2 from `from` to `to` inclusive (1 step: `from`).
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct AngleRange {
+    /// The first angle.
+    pub from: f64,
+    /// The last angle.
+    pub to: f64,
+    /// How many.
+    pub steps: usize,
+}
+
+impl AngleRange {
+    /// The angles, in order.
+    #[must_use]
+    pub fn angles(&self) -> Vec<f64> {
+        if self.steps <= 1 {
+            return vec![self.from];
+        }
+        #[expect(clippy::cast_precision_loss, reason = "a step count")]
+        let last = (self.steps - 1) as f64;
+        (0..self.steps)
+            .map(|k| {
+                #[expect(clippy::cast_precision_loss, reason = "a step index")]
+                let t = k as f64 / last;
+                // Exact at both ends.
+                (1.0 - t) * self.from + t * self.to
+            })
+            .collect()
+    }
+}
+
+/// One camera pose given by the spec.
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct GivenPose {
+    /// Where the eye is.
+    pub eye: [f64; 3],
+    /// What it looks at.
+    pub target: [f64; 3],
+    /// The up hint. Default +y.
+    #[serde(default = "y_up")]
+    pub up: [f64; 3],
+}
+
+fn y_up() -> [f64; 3] {
+    [0.0, 1.0, 0.0]
 }
 
 /// `sweep_angle`'s side, as a spec names it.
@@ -100,6 +152,11 @@ pub enum Cameras {
         /// Walk frames between two poses (≥ 1). Default 1.
         #[serde(default = "one")]
         every: usize,
+    },
+    /// The poses given, in order (a camera path: the same for every scene of the spec).
+    Path {
+        /// The poses.
+        poses: Vec<GivenPose>,
     },
     /// Random poses around the scene's camera ([`crate::frames::random_pose`]): the eye moved by
     /// up to `reach` × the scene's radius, the view turned by up to `turn_degrees`; drawn from
@@ -303,12 +360,25 @@ fn count(name: &str, n: usize) -> Result<(), SweepError> {
 fn check_lights(lights: &Lights) -> Result<(), SweepError> {
     match lights {
         Lights::Scene => Ok(()),
-        Lights::Gamma { degrees, .. } => {
-            count("lights.degrees", degrees.len())?;
-            for (k, d) in degrees.iter().enumerate() {
+        Lights::Gamma { degrees, range, .. } => {
+            let field = match (degrees.is_empty(), range) {
+                (false, None) => "lights.degrees",
+                (true, Some(range)) => {
+                    count("lights.range.steps", range.steps)?;
+                    "lights.range"
+                }
+                _ => {
+                    return Err(SweepError::Spec(
+                        "lights: give the angles γ as degrees = [...] or as range = { from, to, steps }, one of the two".into(),
+                    ));
+                }
+            };
+            let angles = gamma_angles(degrees, range.as_ref());
+            count(field, angles.len())?;
+            for (k, d) in angles.iter().enumerate() {
                 if !(0.0..=90.0).contains(d) {
                     return Err(SweepError::Spec(format!(
-                        "lights.degrees[{k}]: {d} is not an angle in [0, 90] degrees"
+                        "{field}: angle {k}, {d}, is not an angle in [0, 90] degrees"
                     )));
                 }
             }
@@ -336,9 +406,24 @@ fn check_lights(lights: &Lights) -> Result<(), SweepError> {
     }
 }
 
+/// The angles γ of a `gamma` light placement, degrees: `degrees`, or `range`'s.
+#[must_use]
+pub fn gamma_angles(degrees: &[f64], range: Option<&AngleRange>) -> Vec<f64> {
+    range.map_or_else(|| degrees.to_vec(), AngleRange::angles)
+}
+
 fn check_cameras(cameras: &Cameras) -> Result<(), SweepError> {
     match cameras {
         Cameras::Scene => Ok(()),
+        Cameras::Path { poses } => {
+            count("cameras.poses", poses.len())?;
+            for (k, p) in poses.iter().enumerate() {
+                let v = |a: [f64; 3]| glam::DVec3::from_array(a);
+                shadowlab_hull::ViewPose::look_at(v(p.eye), v(p.target), v(p.up))
+                    .map_err(|e| SweepError::Spec(format!("cameras.poses[{k}]: {e}")))?;
+            }
+            Ok(())
+        }
         Cameras::Walk { frames, every } => {
             count("cameras.frames", *frames)?;
             count("cameras.every", *every)
@@ -390,6 +475,19 @@ mod tests {
     }
 
     #[test]
+    fn an_angle_range_is_exact_at_both_ends() {
+        let range = AngleRange {
+            from: 0.0,
+            to: 90.0,
+            steps: 7,
+        };
+        assert_eq!(
+            range.angles(),
+            vec![0.0, 15.0, 30.0, 45.0, 60.0, 75.0, 90.0]
+        );
+    }
+
+    #[test]
     fn a_file_scene_is_the_specs_directorys() {
         let spec = parse("scenes = [\"mine.gltf\", \"outdoor\"]").unwrap();
         assert_eq!(
@@ -410,13 +508,25 @@ mod tests {
             ("colour = 3", "colour"),
             (
                 "[lights]\nkind = \"gamma\"\ndegrees = [10, 91]",
-                "lights.degrees[1]",
+                "lights.degrees: angle 1",
             ),
             (
                 "[lights]\nkind = \"sphere\"\nelevations = [0]\nazimuths = 4",
                 "lights.elevations[0]",
             ),
             ("[cameras]\nkind = \"walk\"\nframes = 0", "cameras.frames"),
+            (
+                "[cameras]\nkind = \"path\"\nposes = [{ eye = [0, 1, 0], target = [0, 1, 0] }]",
+                "cameras.poses[0]",
+            ),
+            (
+                "[lights]\nkind = \"gamma\"\nrange = { from = 0, to = 100, steps = 3 }",
+                "lights.range",
+            ),
+            (
+                "[lights]\nkind = \"gamma\"\ndegrees = [1]\nrange = { from = 0, to = 9, steps = 3 }",
+                "one of the two",
+            ),
             ("[cameras]\nkind = \"orbit\"", "orbit"),
         ] {
             let e = parse(text).unwrap_err();
