@@ -63,7 +63,14 @@ fn timeless(merged: &Path) -> Vec<(String, Vec<u8>)> {
         ("results.csv".into(), table.into_bytes()),
         ("report.md".into(), before_time.as_bytes().to_vec()),
     ];
-    for figure in ["gamma.svg", "gamma.png", "resolution.svg", "resolution.png"] {
+    for figure in [
+        "distribution.svg",
+        "distribution.png",
+        "gamma.svg",
+        "gamma.png",
+        "resolution.svg",
+        "resolution.png",
+    ] {
         out.push((figure.into(), std::fs::read(merged.join(figure)).unwrap()));
     }
     out

@@ -27,8 +27,8 @@ const GAMMA_PLOT_RESOLUTION: f64 = 1000.0;
 const LOG_FLOOR: f64 = 1e-4;
 
 /// The merged files of `records` (every cell of one sweep, in cell order): `results.csv`,
-/// `results.parquet`, `report.md`, and its figures `gamma.svg`/`.png` and
-/// `resolution.svg`/`.png`.
+/// `results.parquet`, `report.md`, and its figures `distribution`, `gamma` and `resolution`
+/// (each `.svg` and `.png`).
 ///
 /// # Errors
 /// [`SweepError::Output`] if a table or figure cannot be written.
@@ -43,6 +43,7 @@ pub fn merged_files(records: &[CellRecord]) -> Result<Vec<(String, Vec<u8>)>, Sw
         ("report.md".to_string(), report(records).into_bytes()),
     ];
     for (name, figure) in [
+        ("distribution", distribution(records)),
         ("gamma", against(records, Versus::Gamma)),
         ("resolution", against(records, Versus::Resolution)),
     ] {
@@ -169,7 +170,11 @@ pub fn report(records: &[CellRecord]) -> String {
     }
     let _ = writeln!(
         w,
-        "\n## Against γ\n\nMedian misclassified % per γ bin of {GAMMA_BIN_DEGREES}° (γ, the angle between the view and light directions, in degrees; — where the sweep has no defined cell).\n"
+        "\n![The distributions of misclassified pixels and footprints](distribution.png)\n"
+    );
+    let _ = writeln!(
+        w,
+        "## Against γ\n\nMedian misclassified % per γ bin of {GAMMA_BIN_DEGREES}° (γ, the angle between the view and light directions, in degrees; — where the sweep has no defined cell).\n"
     );
     let present: Vec<usize> = (0..bins())
         .filter(|b| records.iter().any(|r| gamma_bin(r.gamma_deg) == *b))
@@ -266,6 +271,86 @@ fn table_by(
             })
             .collect();
         let _ = writeln!(w, "| {t} | {} |", entries.join(" | "));
+    }
+}
+
+/// The empirical distribution over the sweep's defined cells of each technique: the fraction of
+/// its cells with at most x misclassified % (left) and at most x pixels per texel at the 99th
+/// percentile (right).
+fn distribution(records: &[CellRecord]) -> Figure {
+    let techniques = distinct(records.iter().map(|r| r.technique.clone()));
+    let series = |value: fn(&CellRecord) -> Option<f64>| -> Vec<Series> {
+        techniques
+            .iter()
+            .enumerate()
+            .map(|(k, t)| {
+                let mut values: Vec<f64> = records
+                    .iter()
+                    .filter(|r| &r.technique == t)
+                    .filter_map(value)
+                    .map(|v| v.max(LOG_FLOOR))
+                    .collect();
+                values.sort_by(f64::total_cmp);
+                #[expect(clippy::cast_precision_loss, reason = "cell counts")]
+                let n = values.len() as f64;
+                // A staircase: at each value the fraction steps up.
+                let mut points = Vec::with_capacity(2 * values.len());
+                for (j, v) in values.iter().enumerate() {
+                    #[expect(clippy::cast_precision_loss, reason = "cell counts")]
+                    let (below, at) = (j as f64 / n, (j + 1) as f64 / n);
+                    points.push((*v, below));
+                    points.push((*v, at));
+                }
+                let line = if k < 7 {
+                    LineStyle::Solid
+                } else {
+                    LineStyle::Dashed
+                };
+                Series::new(t.clone(), points, k, line)
+            })
+            .collect()
+    };
+    let errors = series(percent);
+    let footprints = series(|r| r.footprint_p99);
+    let x_range = |s: &[Series]| {
+        let (lo, hi) = s
+            .iter()
+            .flat_map(|s| s.points.iter().map(|p| p.0))
+            .fold((f64::INFINITY, 0.0f64), |(l, h), v| (l.min(v), h.max(v)));
+        if lo.is_finite() {
+            ((lo * 0.8).max(LOG_FLOOR), (hi * 1.25).max(lo * 10.0))
+        } else {
+            (LOG_FLOOR, 1.0)
+        }
+    };
+    let panel = |caption: &str, x: Axis, series| Panel {
+        title: caption.into(),
+        x,
+        y: Axis::linear("fraction of the technique's cells", 0.0, 1.0),
+        series,
+        markers: Vec::new(),
+        legend: LegendPosition::LowerRight,
+    };
+    let (e_lo, e_hi) = x_range(&errors);
+    let (f_lo, f_hi) = x_range(&footprints);
+    Figure {
+        title: "The sweep's distributions: the fraction of each technique's defined cells at or below x"
+            .into(),
+        panels: vec![
+            panel(
+                "misclassified pixels, % of visible",
+                Axis::log("misclassified %", e_lo, e_hi),
+                errors,
+            ),
+            panel(
+                "texel footprint, 99th percentile",
+                Axis::log("pixels per texel", f_lo, f_hi),
+                footprints,
+            ),
+        ],
+        columns: 2,
+        panel_width: 720,
+        panel_height: 520,
     }
 }
 
