@@ -309,6 +309,16 @@ pub struct EyePass {
 }
 
 impl EyePass {
+    /// Pixels with a visible surface.
+    #[must_use]
+    pub fn visible(&self) -> u64 {
+        self.image
+            .triangle
+            .iter()
+            .filter(|t| **t != NO_TRIANGLE)
+            .count() as u64
+    }
+
     /// The eye pass of `scene`'s camera.
     ///
     /// # Errors
@@ -688,13 +698,6 @@ pub fn run_observed<E: From<AnalysisError>>(
         measurements.push(measurement);
     }
     progress(all.len(), all.len(), None);
-    let visible = ground
-        .eye
-        .image
-        .triangle
-        .iter()
-        .filter(|t| **t != NO_TRIANGLE)
-        .count();
     Ok(Study {
         scene: scene.name.clone(),
         timing_runs: options.timing_runs.max(1),
@@ -702,7 +705,7 @@ pub fn run_observed<E: From<AnalysisError>>(
         focus: Some(options.focus),
         width: scene.camera.width,
         height: scene.camera.height,
-        visible: visible as u64,
+        visible: ground.eye.visible(),
         truth_time: ground.truth_time,
         map_truth,
         measurements,

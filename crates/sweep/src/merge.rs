@@ -274,84 +274,122 @@ fn table_by(
     }
 }
 
-/// The empirical distribution over the sweep's defined cells of each technique: the fraction of
-/// its cells with at most x misclassified % (left) and at most x pixels per texel at the 99th
-/// percentile (right).
-fn distribution(records: &[CellRecord]) -> Figure {
-    let techniques = distinct(records.iter().map(|r| r.technique.clone()));
-    let series = |value: fn(&CellRecord) -> Option<f64>| -> Vec<Series> {
-        techniques
-            .iter()
-            .enumerate()
-            .map(|(k, t)| {
-                let mut values: Vec<f64> = records
-                    .iter()
-                    .filter(|r| &r.technique == t)
-                    .filter_map(value)
-                    .map(|v| v.max(LOG_FLOOR))
-                    .collect();
-                values.sort_by(f64::total_cmp);
-                #[expect(clippy::cast_precision_loss, reason = "cell counts")]
-                let n = values.len() as f64;
-                // A staircase: at each value the fraction steps up.
-                let mut points = Vec::with_capacity(2 * values.len());
-                for (j, v) in values.iter().enumerate() {
-                    #[expect(clippy::cast_precision_loss, reason = "cell counts")]
-                    let (below, at) = (j as f64 / n, (j + 1) as f64 / n);
-                    points.push((*v, below));
-                    points.push((*v, at));
-                }
-                let line = if k < 7 {
-                    LineStyle::Solid
-                } else {
-                    LineStyle::Dashed
-                };
-                Series::new(t.clone(), points, k, line)
-            })
-            .collect()
-    };
-    let errors = series(percent);
-    let footprints = series(|r| r.footprint_p99);
-    let x_range = |s: &[Series]| {
-        let (lo, hi) = s
-            .iter()
-            .flat_map(|s| s.points.iter().map(|p| p.0))
-            .fold((f64::INFINITY, 0.0f64), |(l, h), v| (l.min(v), h.max(v)));
-        if lo.is_finite() {
-            ((lo * 0.8).max(LOG_FLOOR), (hi * 1.25).max(lo * 10.0))
-        } else {
-            (LOG_FLOOR, 1.0)
+/// One line per technique, in the palette's order (dashed after the seventh), its points made by
+/// `points(technique)`.
+fn technique_series(
+    techniques: &[String],
+    points: impl Fn(&str) -> Vec<(f64, f64)>,
+) -> Vec<Series> {
+    techniques
+        .iter()
+        .enumerate()
+        .map(|(k, t)| {
+            let line = if k < 7 {
+                LineStyle::Solid
+            } else {
+                LineStyle::Dashed
+            };
+            Series::new(t.clone(), points(t), k, line)
+        })
+        .collect()
+}
+
+/// A log axis's range over the finite `values`, widened by `margin` each way (at least a decade,
+/// never below [`LOG_FLOOR`]).
+fn log_range(values: impl Iterator<Item = f64>, margin: f64) -> (f64, f64) {
+    let (lo, hi) = values
+        .filter(|v| v.is_finite())
+        .fold((f64::INFINITY, 0.0f64), |(l, h), v| (l.min(v), h.max(v)));
+    if lo.is_finite() {
+        ((lo / margin).max(LOG_FLOOR), (hi * margin).max(lo * 10.0))
+    } else {
+        (LOG_FLOOR, 1.0)
+    }
+}
+
+/// The two panels every sweep figure has — misclassified pixels (left) and the 99th-percentile
+/// footprint (right) — as lines `errors` and `footprints` on axes made by `axes(left)` (x, y).
+fn error_and_footprint(
+    title: String,
+    (errors, footprints): (Vec<Series>, Vec<Series>),
+    axes: impl Fn(bool, &[Series]) -> (Axis, Axis),
+    legend: LegendPosition,
+) -> Figure {
+    let panel = |caption: &str, left: bool, series: Vec<Series>| {
+        let (x, y) = axes(left, &series);
+        Panel {
+            title: caption.into(),
+            x,
+            y,
+            series,
+            markers: Vec::new(),
+            legend,
         }
     };
-    let panel = |caption: &str, x: Axis, series| Panel {
-        title: caption.into(),
-        x,
-        y: Axis::linear("fraction of the technique's cells", 0.0, 1.0),
-        series,
-        markers: Vec::new(),
-        legend: LegendPosition::LowerRight,
-    };
-    let (e_lo, e_hi) = x_range(&errors);
-    let (f_lo, f_hi) = x_range(&footprints);
     Figure {
-        title: "The sweep's distributions: the fraction of each technique's defined cells at or below x"
-            .into(),
+        title,
         panels: vec![
-            panel(
-                "misclassified pixels, % of visible",
-                Axis::log("misclassified %", e_lo, e_hi),
-                errors,
-            ),
-            panel(
-                "texel footprint, 99th percentile",
-                Axis::log("pixels per texel", f_lo, f_hi),
-                footprints,
-            ),
+            panel("misclassified pixels, % of visible", true, errors),
+            panel("texel footprint, 99th percentile", false, footprints),
         ],
         columns: 2,
         panel_width: 720,
         panel_height: 520,
     }
+}
+
+/// The axis label of a panel's measure.
+fn measure_label(left: bool) -> &'static str {
+    if left {
+        "misclassified %"
+    } else {
+        "pixels per texel"
+    }
+}
+
+/// The empirical distribution over the sweep's defined cells of each technique: the fraction of
+/// its cells with at most x misclassified % (left) and at most x pixels per texel at the 99th
+/// percentile (right), as staircases.
+fn distribution(records: &[CellRecord]) -> Figure {
+    let techniques = distinct(records.iter().map(|r| r.technique.clone()));
+    let series = |value: fn(&CellRecord) -> Option<f64>| {
+        technique_series(&techniques, |t| {
+            let mut values: Vec<f64> = records
+                .iter()
+                .filter(|r| r.technique == t)
+                .filter_map(value)
+                .map(|v| v.max(LOG_FLOOR))
+                .collect();
+            values.sort_by(f64::total_cmp);
+            #[expect(clippy::cast_precision_loss, reason = "cell counts")]
+            let n = values.len() as f64;
+            values
+                .iter()
+                .enumerate()
+                .flat_map(|(j, v)| {
+                    #[expect(clippy::cast_precision_loss, reason = "cell counts")]
+                    let (below, at) = (j as f64 / n, (j + 1) as f64 / n);
+                    [(*v, below), (*v, at)]
+                })
+                .collect()
+        })
+    };
+    error_and_footprint(
+        "The sweep's distributions: the fraction of each technique's defined cells at or below x"
+            .into(),
+        (series(percent), series(|r| r.footprint_p99)),
+        |left, series| {
+            let (lo, hi) = log_range(
+                series.iter().flat_map(|s| s.points.iter().map(|p| p.0)),
+                1.25,
+            );
+            (
+                Axis::log(measure_label(left), lo, hi),
+                Axis::linear("fraction of the technique's cells", 0.0, 1.0),
+            )
+        },
+        LegendPosition::LowerRight,
+    )
 }
 
 /// What a figure's x axis is.
@@ -373,47 +411,20 @@ fn against(records: &[CellRecord], versus: Versus) -> Figure {
     let mut xs: Vec<f64> = records.iter().map(x_of).collect();
     xs.sort_by(f64::total_cmp);
     xs.dedup();
-    let series = |value: fn(&CellRecord) -> Option<f64>| -> Vec<Series> {
-        techniques
-            .iter()
-            .enumerate()
-            .map(|(k, t)| {
-                let points = xs
-                    .iter()
-                    .map(|x| {
-                        let values: Vec<f64> = records
-                            .iter()
-                            .filter(|r| &r.technique == t && x_of(r).to_bits() == x.to_bits())
-                            .filter_map(value)
-                            .collect();
-                        (
-                            *x,
-                            quantile(&values, 0.5).map_or(f64::NAN, |v| v.max(LOG_FLOOR)),
-                        )
-                    })
-                    .collect();
-                let line = if k < 7 {
-                    LineStyle::Solid
-                } else {
-                    LineStyle::Dashed
-                };
-                Series::new(t.clone(), points, k, line)
-            })
-            .collect()
-    };
-    let errors = series(percent);
-    let footprints = series(|r| r.footprint_p99);
-    let range = |s: &[Series]| {
-        let (lo, hi) = s
-            .iter()
-            .flat_map(|s| s.points.iter().map(|p| p.1))
-            .filter(|v| v.is_finite())
-            .fold((f64::INFINITY, 0.0f64), |(l, h), v| (l.min(v), h.max(v)));
-        if lo.is_finite() {
-            ((lo * 0.5).max(LOG_FLOOR), (hi * 2.0).max(lo * 10.0))
-        } else {
-            (LOG_FLOOR, 1.0)
-        }
+    let series = |value: fn(&CellRecord) -> Option<f64>| {
+        technique_series(&techniques, |t| {
+            xs.iter()
+                .map(|x| {
+                    let values: Vec<f64> = records
+                        .iter()
+                        .filter(|r| r.technique == t && x_of(r).to_bits() == x.to_bits())
+                        .filter_map(value)
+                        .collect();
+                    let median = quantile(&values, 0.5);
+                    (*x, median.map_or(f64::NAN, |v| v.max(LOG_FLOOR)))
+                })
+                .collect()
+        })
     };
     let (x_axis, title) = match versus {
         Versus::Gamma => (
@@ -429,36 +440,18 @@ fn against(records: &[CellRecord], versus: Versus) -> Figure {
             )
         }
     };
-    let (e_lo, e_hi) = range(&errors);
-    let (f_lo, f_hi) = range(&footprints);
-    let panel = |caption: &str, y: Axis, series| Panel {
-        title: caption.into(),
-        x: x_axis.clone(),
-        y,
-        series,
-        markers: Vec::new(),
-        legend: LegendPosition::UpperRight,
-    };
-    Figure {
-        title: format!(
-            "The sweep {title}: medians over cameras, lights, scenes and the other settings"
-        ),
-        panels: vec![
-            panel(
-                "misclassified pixels, % of visible",
-                Axis::log("misclassified %", e_lo, e_hi),
-                errors,
-            ),
-            panel(
-                "texel footprint, 99th percentile",
-                Axis::log("pixels per texel", f_lo, f_hi),
-                footprints,
-            ),
-        ],
-        columns: 2,
-        panel_width: 720,
-        panel_height: 520,
-    }
+    error_and_footprint(
+        format!("The sweep {title}: medians over cameras, lights, scenes and the other settings"),
+        (series(percent), series(|r| r.footprint_p99)),
+        |left, series| {
+            let (lo, hi) = log_range(
+                series.iter().flat_map(|s| s.points.iter().map(|p| p.1)),
+                2.0,
+            );
+            (x_axis.clone(), Axis::log(measure_label(left), lo, hi))
+        },
+        LegendPosition::UpperRight,
+    )
 }
 
 #[cfg(test)]

@@ -5,7 +5,6 @@ use std::time::Instant;
 
 use shadowlab_analysis::AnalysisError;
 use shadowlab_analysis::study::{Ground, measure_setting};
-use shadowlab_raster::NO_TRIANGLE;
 
 use crate::cells::Plan;
 use crate::error::SweepError;
@@ -59,13 +58,7 @@ pub fn run_shard(
         let scene = plan.frame_scene(frame)?;
         let analysis = |e: AnalysisError| SweepError::Analysis(format!("{label}: {e}"));
         let ground = Ground::new(&scene).map_err(analysis)?;
-        let visible = ground
-            .eye
-            .image
-            .triangle
-            .iter()
-            .filter(|t| **t != NO_TRIANGLE)
-            .count() as u64;
+        let visible = ground.eye.visible();
         for slot in k..end {
             if stored[slot].is_some() {
                 continue;
