@@ -9,7 +9,7 @@ use shadowlab_sweep::merge::merged_files;
 use shadowlab_sweep::run::run_shard;
 use shadowlab_sweep::shard::{assign, loads};
 use shadowlab_sweep::spec::SceneSource;
-use shadowlab_sweep::store::{SweepDir, collect, write_atomically};
+use shadowlab_sweep::store::{MERGED_DIR, SLURM_DIR, SweepDir, collect, write_atomically};
 use shadowlab_sweep::{EXAMPLE, Plan, Shard, Spec, SweepError, SweepIdentity};
 
 use crate::args::{MergeArgs, SceneArg, SweepSpecArgs};
@@ -20,9 +20,6 @@ use crate::shadow_settings::load_scene_argument;
 
 /// The merged output's size bound: the tables, the report and two figures.
 const MERGED_BOUND: u64 = 16 * TEXT_BOUND;
-
-/// The directory a whole sweep merges into, inside its sweep directory.
-const MERGED_DIR: &str = "merged";
 
 fn sweep_error(e: SweepError) -> CliError {
     match e {
@@ -227,7 +224,7 @@ fn write_slurm(
         .map_err(|e| CliError::Failure(anyhow::anyhow!("cannot find this program: {e}")))?;
     let spec = absolute(spec, "SPEC")?;
     let root = absolute(root, "--out")?;
-    let slurm = root.join("slurm");
+    let slurm = root.join(SLURM_DIR);
     std::fs::create_dir_all(slurm.join("logs")).map_err(|e| {
         CliError::Input(format!(
             "invalid --out: cannot create {}: {e}",

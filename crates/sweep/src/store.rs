@@ -12,6 +12,7 @@
 
 use std::fs;
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicU64, Ordering};
 
 use serde::{Deserialize, Serialize};
 
@@ -46,6 +47,21 @@ fn io(path: &Path, what: &str, e: &std::io::Error) -> SweepError {
     SweepError::Output(format!("{}: cannot {what}: {e}", path.display()))
 }
 
+/// The merged output of a whole sweep, inside its directory.
+pub const MERGED_DIR: &str = "merged";
+
+/// The Slurm scripts of a sweep, inside its directory.
+pub const SLURM_DIR: &str = "slurm";
+
+/// Whether a directory entry's name is one a sweep directory holds (its identity, cells, shard
+/// tables, merged output, Slurm scripts, or a hidden temporary: [`write_atomically`]'s, an output
+/// set's staging): what another shard starting at the same moment may already have made.
+fn is_sweep_entry(name: &str) -> bool {
+    [IDENTITY_FILE, CELLS_DIR, MERGED_DIR, SLURM_DIR].contains(&name)
+        || name.starts_with("shard-")
+        || name.starts_with('.')
+}
+
 /// Writes `bytes` to `path` through a temporary file in the same directory and a rename.
 ///
 /// # Errors
@@ -55,7 +71,10 @@ pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), SweepError> {
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_default();
-    let temporary = path.with_file_name(format!(".{name}.{}.partial", std::process::id()));
+    // Unique to this process and call: shards (processes) and threads may write one name at once.
+    static CALLS: AtomicU64 = AtomicU64::new(0);
+    let call = CALLS.fetch_add(1, Ordering::Relaxed);
+    let temporary = path.with_file_name(format!(".{name}.{}.{call}.partial", std::process::id()));
     fs::write(&temporary, bytes).map_err(|e| io(&temporary, "write", &e))?;
     fs::rename(&temporary, path).map_err(|e| {
         let _ = fs::remove_file(&temporary);
@@ -71,8 +90,12 @@ impl SweepDir {
     /// that are not a sweep's, naming it;
     /// [`SweepError::Output`] if it cannot be created or written.
     pub fn create(root: &Path, identity: SweepIdentity) -> Result<Self, SweepError> {
-        let foreign = fs::read_dir(root).is_ok_and(|mut entries| entries.next().is_some())
-            && !root.join(IDENTITY_FILE).exists();
+        let foreign = !root.join(IDENTITY_FILE).exists()
+            && fs::read_dir(root).is_ok_and(|entries| {
+                entries
+                    .flatten()
+                    .any(|e| !is_sweep_entry(&e.file_name().to_string_lossy()))
+            });
         if foreign {
             return Err(SweepError::Shard(format!(
                 "{}: holds files that are not a sweep's (no {IDENTITY_FILE}); give --out a new, an empty or a sweep directory",
@@ -80,19 +103,18 @@ impl SweepDir {
             )));
         }
         fs::create_dir_all(root.join(CELLS_DIR)).map_err(|e| io(root, "create", &e))?;
-        let path = root.join(IDENTITY_FILE);
-        match Self::read_identity(root) {
-            Ok(existing) if existing != identity => {
-                return Err(SweepError::Shard(format!(
-                    "{}: holds the results of another sweep (its {IDENTITY_FILE} names a different spec); give --out another directory",
-                    root.display()
-                )));
-            }
-            Ok(_) => {}
-            Err(_) => {
-                let text = serde_json::to_string_pretty(&identity).expect("plain data");
-                write_atomically(&path, text.as_bytes())?;
-            }
+        if Self::read_identity(root).is_err() {
+            // Shards starting together all write it; the same sweep writes the same bytes.
+            let text = serde_json::to_string_pretty(&identity).expect("plain data");
+            write_atomically(&root.join(IDENTITY_FILE), text.as_bytes())?;
+        }
+        // Read back, so that of two different sweeps started into one directory at once, the one
+        // whose identity did not land stops here.
+        if Self::read_identity(root)? != identity {
+            return Err(SweepError::Shard(format!(
+                "{}: holds the results of another sweep (its {IDENTITY_FILE} names a different spec); give --out another directory",
+                root.display()
+            )));
         }
         Ok(Self {
             root: root.to_path_buf(),
@@ -220,4 +242,51 @@ pub fn collect(dirs: &[SweepDir]) -> Result<(SweepIdentity, Vec<CellRecord>), Sw
         )));
     }
     Ok((first.identity.clone(), records))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn identity(spec: &str) -> SweepIdentity {
+        SweepIdentity {
+            spec: spec.into(),
+            cells: 3,
+        }
+    }
+
+    #[test]
+    fn shards_starting_together_all_open_the_directory() {
+        let dir = tempfile::tempdir().unwrap();
+        let root = dir.path().join("sweep");
+        let opened: Vec<bool> = std::thread::scope(|scope| {
+            let handles: Vec<_> = (0..8)
+                .map(|_| scope.spawn(|| SweepDir::create(&root, identity("a")).is_ok()))
+                .collect();
+            handles.into_iter().map(|h| h.join().unwrap()).collect()
+        });
+        assert!(opened.iter().all(|o| *o), "{opened:?}");
+        assert_eq!(SweepDir::open(&root).unwrap().identity(), &identity("a"));
+    }
+
+    #[test]
+    fn another_sweep_or_foreign_files_are_refused() {
+        let dir = tempfile::tempdir().unwrap();
+        SweepDir::create(dir.path(), identity("a")).unwrap();
+        let e = SweepDir::create(dir.path(), identity("b")).unwrap_err();
+        assert!(e.to_string().contains("another sweep"), "{e}");
+        let foreign = tempfile::tempdir().unwrap();
+        fs::write(foreign.path().join("notes.txt"), "mine").unwrap();
+        let e = SweepDir::create(foreign.path(), identity("a")).unwrap_err();
+        assert!(e.to_string().contains("not a sweep's"), "{e}");
+    }
+
+    #[test]
+    fn a_cell_file_of_another_cell_or_cut_short_is_not_complete() {
+        let dir = tempfile::tempdir().unwrap();
+        let sweep = SweepDir::create(dir.path(), identity("a")).unwrap();
+        assert_eq!(sweep.load_cell(1), None);
+        fs::write(sweep.cell_path(1), "{\"cell\": 1, \"sce").unwrap();
+        assert_eq!(sweep.load_cell(1), None);
+    }
 }
