@@ -80,7 +80,8 @@ pub(crate) struct SweepSpecArgs {
     #[arg(long, conflicts_with_all = ["spec", "dry_run", "shard", "slurm", "out"])]
     pub(crate) example: bool,
     /// Print the number of frames and cells and the estimated work (per shard with --shard or
-    /// --shards), and run nothing.
+    /// --shards) and, if the sweep directory holds this sweep, how many cells are done; run
+    /// nothing.
     #[arg(long)]
     pub(crate) dry_run: bool,
     /// The sweep directory: cells/ (one result per cell), shard-I-of-N/ (each finished shard's

@@ -94,10 +94,18 @@ pub(crate) fn sweep(args: &SweepSpecArgs) -> Result<(), CliError> {
         spec: text,
         cells: plan.cells.len(),
     };
-    if args.dry_run {
-        return dry_run(&plan, args.shard.map(|s| s.count).or(args.shards));
-    }
     let root = sweep_dir_path(args, spec_path);
+    if args.dry_run {
+        // What a directory of this sweep already holds, if there is one (never created here).
+        let done = SweepDir::open(&root)
+            .ok()
+            .filter(|dir| dir.identity() == &identity);
+        return dry_run(
+            &plan,
+            args.shard.map(|s| s.count).or(args.shards),
+            done.as_ref(),
+        );
+    }
     if args.slurm {
         for option in &args.sbatch_option {
             if !option.starts_with("--") || option.contains('\n') {
@@ -149,14 +157,31 @@ pub(crate) fn sweep(args: &SweepSpecArgs) -> Result<(), CliError> {
     Ok(())
 }
 
-/// Prints the sweep's size and estimated work, per shard if `shards` is given.
-fn dry_run(plan: &Plan, shards: Option<usize>) -> Result<(), CliError> {
+/// Prints the sweep's size and estimated work, per shard if `shards` is given, and how many
+/// cells the sweep directory `done` holds already (in all and per shard).
+fn dry_run(plan: &Plan, shards: Option<usize>, done: Option<&SweepDir>) -> Result<(), CliError> {
+    let finished: Vec<bool> = plan
+        .cells
+        .iter()
+        .map(|c| done.is_some_and(|d| d.load_cell(c.index).is_some()))
+        .collect();
+    let progress = |cells: &mut dyn Iterator<Item = usize>| -> String {
+        match done {
+            Some(_) => {
+                let (n, finished) =
+                    cells.fold((0, 0), |(n, f), c| (n + 1, f + usize::from(finished[c])));
+                format!(", {finished} of {n} done")
+            }
+            None => String::new(),
+        }
+    };
     let seconds = |ns: f64| ns / 1e9;
     print_line(&format!(
-        "{} cells in {} frames ({} scene(s))",
+        "{} cells in {} frames ({} scene(s)){}",
         plan.cells.len(),
         plan.frames.len(),
-        plan.scenes.len()
+        plan.scenes.len(),
+        progress(&mut (0..plan.cells.len()))
     ))?;
     print_line(&format!(
         "estimated work: {:.1} CPU-seconds (the cost model of docs/cluster.md; frames' truths {:.1} s of it)",
@@ -168,9 +193,11 @@ fn dry_run(plan: &Plan, shards: Option<usize>) -> Result<(), CliError> {
         let loads = loads(plan, &assignment, count);
         for (k, load) in loads.iter().enumerate() {
             let cells = assignment.iter().filter(|s| **s == k).count();
+            let mine = &mut (0..plan.cells.len()).filter(|c| assignment[*c] == k);
             print_line(&format!(
-                "shard {k}/{count}: {cells} cells, estimated {:.1} CPU-seconds",
-                seconds(*load)
+                "shard {k}/{count}: {cells} cells, estimated {:.1} CPU-seconds{}",
+                seconds(*load),
+                progress(mine)
             ))?;
         }
     }
