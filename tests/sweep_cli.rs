@@ -406,3 +406,36 @@ fn generators_make_the_documented_frames() {
         stdout(&run)
     );
 }
+
+/// Claim: a generated frame that admits no map for a technique (a camera looking at the sky:
+/// SDSM has no visible sample to fit) is recorded as that cell's outcome, with the reason, and
+/// the sweep goes on; the table quotes the reason's commas.
+#[test]
+fn frames_without_a_map_are_recorded_not_fatal() {
+    let dir = tempfile::tempdir().unwrap();
+    let spec = dir.path().join("sky.toml");
+    std::fs::write(
+        &spec,
+        "scenes = [\"outdoor\"]\ntechniques = [\"uniform\", \"sdsm\"]\nresolutions = [64]\n[cameras]\nkind = \"path\"\nposes = [{ eye = [0, 5, 0], target = [0, 50, 1] }, { eye = [0, 5, 20], target = [0, 0, 0] }]\n",
+    )
+    .unwrap();
+    let out = dir.path().join("sky");
+    ok(&shadowlab(
+        &[
+            "sweep",
+            spec.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ],
+        None,
+    ));
+    let csv = std::fs::read_to_string(out.join("merged/results.csv")).unwrap();
+    let undefined: Vec<&str> = csv.lines().filter(|l| l.contains(",false,")).collect();
+    assert_eq!(undefined.len(), 1, "{csv}");
+    assert!(
+        undefined[0].contains(",sdsm,") && undefined[0].contains("\"no visible sample"),
+        "{csv}"
+    );
+    let report = std::fs::read_to_string(out.join("merged/report.md")).unwrap();
+    assert!(report.contains("## Undefined cells"), "{report}");
+}

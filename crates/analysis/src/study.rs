@@ -557,16 +557,17 @@ pub struct FirstRun<'a> {
 
 /// Measures one combination of `options` on the frame `ground` was made for: its shadows (every
 /// timing run), errors, causes, footprints and a filterable map's leaks, showing the first run to
-/// `first_run` before its buffers are dropped. A technique not defined for the frame is a
-/// measurement too (its reason).
+/// `first_run` before its buffers are dropped. A rendering error for which `undefined` gives a
+/// reason (`ShadowError::undefined_reason` for a study, `ShadowError::frame_reason` for a sweep)
+/// is a measurement too: that reason.
 ///
 /// # Errors
-/// Rendering failures other than a technique being undefined, and `first_run`'s.
+/// Other rendering failures, and `first_run`'s.
 pub fn measure_setting<E: From<AnalysisError>>(
     scene: &Scene,
-    options: &StudyOptions,
-    setting: &Setting,
+    (options, setting): (&StudyOptions, &Setting),
     ground: &Ground,
+    undefined: fn(&ShadowError) -> Option<String>,
     first_run: impl FnOnce(&FirstRun<'_>) -> Result<(), E>,
 ) -> Result<Measurement, E> {
     let (eye, truth, bvh) = (&ground.eye, &ground.truth, &ground.bvh);
@@ -601,7 +602,7 @@ pub fn measure_setting<E: From<AnalysisError>>(
             time_from_runs(&mut measured, &runs);
             Ok(measured)
         }
-        Err(e) => match e.undefined_reason() {
+        Err(e) => match undefined(&e) {
             Some(reason) => Err(reason),
             None => return Err(AnalysisError::from(e).into()),
         },
@@ -673,28 +674,30 @@ pub fn run_observed<E: From<AnalysisError>>(
     let mut pictures = Vec::new();
     for (k, setting) in all.iter().enumerate() {
         progress(k, all.len(), Some(setting));
-        let measurement = measure_setting(scene, options, setting, &ground, |first| {
-            let pictured = options.pictures_at == Some(setting.resolution)
-                && options.partitions.first() == Some(&setting.partitions)
-                && options.filters.first() == Some(&setting.filter);
-            if pictured {
-                pictures.push(Pictures::of(
+        let undefined = ShadowError::undefined_reason;
+        let measurement =
+            measure_setting(scene, (options, setting), &ground, undefined, |first| {
+                let pictured = options.pictures_at == Some(setting.resolution)
+                    && options.partitions.first() == Some(&setting.partitions)
+                    && options.filters.first() == Some(&setting.filter);
+                if pictured {
+                    pictures.push(Pictures::of(
+                        setting,
+                        scene,
+                        (&ground.eye.image, &ground.truth),
+                        first.shadows,
+                        first.footprints,
+                        first.attribution,
+                    ));
+                }
+                observe(&Observed {
                     setting,
-                    scene,
-                    (&ground.eye.image, &ground.truth),
-                    first.shadows,
-                    first.footprints,
-                    first.attribution,
-                ));
-            }
-            observe(&Observed {
-                setting,
-                eye: &ground.eye,
-                truth: &ground.truth,
-                shadows: first.shadows,
-                footprints: first.footprints,
-            })
-        })?;
+                    eye: &ground.eye,
+                    truth: &ground.truth,
+                    shadows: first.shadows,
+                    footprints: first.footprints,
+                })
+            })?;
         measurements.push(measurement);
     }
     progress(all.len(), all.len(), None);

@@ -101,6 +101,25 @@ impl ShadowError {
     }
 }
 
+impl ShadowError {
+    /// Why no map can be made for this frame, where that is the error: what
+    /// [`Self::undefined_reason`] says, and also a frame whose focus body is empty or flat or that
+    /// has no visible sample to fit to ([`Self::EmptyFocusBody`], [`Self::FlatFocusBody`],
+    /// [`Self::NoSamples`]) — what a generated camera pose or light direction can come to — so
+    /// that a sweep over generated frames records it as the cell's outcome; `None` for bad input
+    /// and failures. shadowlab's choice for sweeps; `analyze` stops on these instead, since there
+    /// they say the user's own scene is set up wrong.
+    #[must_use]
+    pub fn frame_reason(&self) -> Option<String> {
+        match self {
+            Self::EmptyFocusBody | Self::FlatFocusBody { .. } | Self::NoSamples => {
+                Some(self.to_string())
+            }
+            _ => self.undefined_reason(),
+        }
+    }
+}
+
 impl std::error::Error for ShadowError {
     fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
         match self {
@@ -139,5 +158,30 @@ impl From<RasterError> for ShadowError {
 impl From<ParamError> for ShadowError {
     fn from(e: ParamError) -> Self {
         Self::Parameter(e)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_frame_without_a_map_has_a_reason_and_bad_input_none() {
+        for frame in [
+            ShadowError::EmptyFocusBody,
+            ShadowError::FlatFocusBody { axis: "warp axis" },
+            ShadowError::NoSamples,
+        ] {
+            assert_eq!(frame.frame_reason(), Some(frame.to_string()));
+            assert_eq!(frame.undefined_reason(), None, "a study stops on {frame}");
+        }
+        let inside = ShadowError::LightInsideFocusBody;
+        assert_eq!(inside.frame_reason(), inside.undefined_reason());
+        let unserved = ShadowError::UnservedLight {
+            technique: "cube",
+            light: "directional",
+            serving: "uniform",
+        };
+        assert_eq!(unserved.frame_reason(), None);
     }
 }

@@ -5,6 +5,7 @@ use std::time::Instant;
 
 use shadowlab_analysis::AnalysisError;
 use shadowlab_analysis::study::{Ground, measure_setting};
+use shadowlab_shadow::ShadowError;
 
 use crate::cells::Plan;
 use crate::error::SweepError;
@@ -22,7 +23,9 @@ pub struct ShardRun {
 }
 
 /// Runs `shard` of `plan`, storing each cell in `dir` as it finishes and skipping those stored
-/// already; `progress(done, total)` after each of the shard's cells.
+/// already; `progress(done, total)` after each of the shard's cells. A cell whose frame admits no
+/// map (`ShadowError::frame_reason`: an empty or flat focus body, no visible sample, or the
+/// technique undefined there) is recorded as not defined, with the reason.
 ///
 /// # Errors
 /// A frame's truth failing (bad geometry), a measurement failing other than by a technique being
@@ -67,9 +70,9 @@ pub fn run_shard(
             let start = Instant::now();
             let measurement = measure_setting(
                 &scene,
-                &plan.options[f.scene],
-                &cell.setting,
+                (&plan.options[f.scene], &cell.setting),
                 &ground,
+                ShadowError::frame_reason,
                 |_| Ok::<(), AnalysisError>(()),
             )
             .map_err(analysis)?;
