@@ -261,7 +261,7 @@ fn write_slurm(
     let q = |p: &Path| shell_quote(&p.display().to_string());
     let extra: String = options.iter().map(|o| format!("#SBATCH {o}\n")).collect();
     let array = format!(
-        "#!/bin/bash\n# A shadowlab sweep as a Slurm job array: task I runs shard I of {shards}.\n#SBATCH --job-name=shadowlab-sweep\n#SBATCH --array=0-{last}\n#SBATCH --ntasks=1\n#SBATCH --output={logs}/shard-%a.out\n{extra}set -euo pipefail\nexec {exe} sweep {spec} --out {root} --shard \"${{SLURM_ARRAY_TASK_ID}}/{shards}\"\n",
+        "#!/bin/bash\n# A shadowlab sweep as a Slurm job array: task I runs shard I of {shards}.\n#SBATCH --job-name=shadowlab-sweep\n#SBATCH --array=0-{last}\n#SBATCH --ntasks=1\n#SBATCH --output={logs}/shard-%a.out\n{extra}set -euo pipefail\n# As many threads as CPUs the task was given (1 unless --cpus-per-task says more), whether or not\n# the cluster binds tasks to their CPUs.\nexport RAYON_NUM_THREADS=\"${{SLURM_CPUS_PER_TASK:-1}}\"\nexec {exe} sweep {spec} --out {root} --shard \"${{SLURM_ARRAY_TASK_ID}}/{shards}\"\n",
         last = shards - 1,
         logs = slurm.join("logs").display(),
         exe = q(&exe),
