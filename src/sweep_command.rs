@@ -8,7 +8,6 @@ use shadowlab_scene::Scene;
 use shadowlab_sweep::merge::merged_files;
 use shadowlab_sweep::run::run_shard;
 use shadowlab_sweep::shard::{assign, loads};
-use shadowlab_sweep::spec::SceneSource;
 use shadowlab_sweep::store::{MERGED_DIR, SLURM_DIR, SweepDir, collect, write_atomically};
 use shadowlab_sweep::{EXAMPLE, Plan, Shard, Spec, SweepError, SweepIdentity};
 
@@ -46,12 +45,8 @@ fn plan_of(path: &Path) -> Result<(String, Plan), CliError> {
         .iter()
         .enumerate()
         .map(|(k, (label, source))| {
-            let name = match source {
-                SceneSource::Builtin(name) => name.clone(),
-                SceneSource::File(file) => file.display().to_string(),
-            };
             let scene: Scene = load_scene_argument(&SceneArg {
-                name: Some(name),
+                name: Some(source.argument()),
                 gltf_scene: None,
             })
             .map_err(|e| match e {

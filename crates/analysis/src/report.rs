@@ -535,7 +535,8 @@ pub fn pareto_front(study: &Study) -> Vec<&Measurement> {
 
 /// `text` as one CSV field (RFC 4180): quoted, with quotes doubled, when it holds a comma, a quote
 /// or a line break — a scene's name comes from its file and may hold any of them.
-pub(crate) fn csv_field(text: &str) -> std::borrow::Cow<'_, str> {
+#[must_use]
+pub fn csv_field(text: &str) -> std::borrow::Cow<'_, str> {
     if text.contains([',', '"', '\n', '\r']) {
         format!("\"{}\"", text.replace('"', "\"\"")).into()
     } else {

@@ -131,36 +131,48 @@ impl Plan {
     pub fn new(spec: &Spec, scenes: Vec<(String, Scene)>) -> Result<Self, SweepError> {
         let poses = camera_poses(&spec.cameras)?;
         let placements = light_placements(&spec.lights);
-        let cells_of = |scene: &Scene| {
-            (poses.len() * placements.len())
-                .saturating_mul(study::settings(&scene_options(spec, scene)).len())
-        };
-        let count = scenes
+        let options: Vec<StudyOptions> = scenes
             .iter()
-            .fold(0usize, |n, (_, scene)| n.saturating_add(cells_of(scene)));
+            .map(|(_, scene)| scene_options(spec, scene))
+            .collect();
+        // Each scene's combinations and their costs, the same in every frame of it.
+        let combinations: Vec<Vec<(Setting, f64)>> = scenes
+            .iter()
+            .zip(&options)
+            .map(|((_, scene), o)| {
+                study::settings(o)
+                    .into_iter()
+                    .map(|setting| {
+                        let cost = cell_cost(scene, &setting, spec.timing_runs);
+                        (setting, cost)
+                    })
+                    .collect()
+            })
+            .collect();
+        let count = combinations.iter().fold(0usize, |n, c| {
+            n.saturating_add((poses.len() * placements.len()).saturating_mul(c.len()))
+        });
         if count > MAX_CELLS {
             return Err(SweepError::Spec(format!(
                 "the sweep has {count} cells, more than {MAX_CELLS}: split it into several specs"
             )));
         }
         let mut frames = Vec::new();
-        let mut cells = Vec::new();
+        let mut cells = Vec::with_capacity(count);
         let mut frame_costs = Vec::new();
-        let mut options = Vec::new();
         for (s, (label, scene)) in scenes.iter().enumerate() {
-            let scene_options = scene_options(spec, scene);
             for (c, pose) in poses.iter().enumerate() {
                 for (l, placement) in placements.iter().enumerate() {
                     // The frame's lights only: a frame's scene is made when it is measured.
                     let (_, lights) = pose_and_lights(scene, *pose, *placement)?;
-                    check_lights(label, &lights, &scene_options.techniques)?;
+                    check_lights(label, &lights, &options[s].techniques)?;
                     let frame = frames.len();
-                    for setting in study::settings(&scene_options) {
+                    for (setting, cost) in &combinations[s] {
                         cells.push(Cell {
                             index: cells.len(),
                             frame,
-                            cost: cell_cost(scene, &setting, spec.timing_runs),
-                            setting,
+                            setting: setting.clone(),
+                            cost: *cost,
                         });
                     }
                     frame_costs.push(frame_cost(scene));
@@ -173,7 +185,6 @@ impl Plan {
                     });
                 }
             }
-            options.push(scene_options);
         }
         Ok(Self {
             scenes,

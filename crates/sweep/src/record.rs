@@ -124,17 +124,4 @@ impl CellRecord {
             .filter(|_| self.visible > 0)
             .map(|m| m as f64 / self.visible as f64)
     }
-
-    /// The record with its timings zeroed: what must agree between two runs of the same cell.
-    #[must_use]
-    pub fn without_timings(&self) -> Self {
-        let zero = |t: Option<f64>| t.map(|_| 0.0);
-        Self {
-            planning_ms: zero(self.planning_ms),
-            shadow_pass_ms: zero(self.shadow_pass_ms),
-            lookup_ms: zero(self.lookup_ms),
-            cell_ms: 0.0,
-            ..self.clone()
-        }
-    }
 }

@@ -198,9 +198,10 @@ pub enum SceneSource {
 }
 
 impl SceneSource {
-    /// The name the spec gives it (as written), which the results carry.
+    /// How a scene argument names it (`analyze SCENE`): the built-in's name, or the file's path
+    /// (relative to the spec's directory).
     #[must_use]
-    pub fn label(&self) -> String {
+    pub fn argument(&self) -> String {
         match self {
             Self::Builtin(name) => name.clone(),
             Self::File(path) => path.display().to_string(),

@@ -152,12 +152,6 @@ impl SweepDir {
         &self.identity
     }
 
-    /// Its path.
-    #[must_use]
-    pub fn root(&self) -> &Path {
-        &self.root
-    }
-
     fn cell_path(&self, cell: usize) -> PathBuf {
         self.root.join(CELLS_DIR).join(format!("{cell:08}.json"))
     }

@@ -34,6 +34,8 @@ use parquet::file::properties::{WriterProperties, WriterVersion};
 use parquet::file::writer::{SerializedColumnWriter, SerializedFileWriter};
 use parquet::schema::types::Type;
 
+use shadowlab_analysis::report::csv_field;
+
 use crate::record::CellRecord;
 
 /// Why the Parquet table could not be written.
@@ -248,14 +250,10 @@ impl Column {
     }
 }
 
-/// Appends `text` as one CSV field (RFC 4180): quoted, with its quotes doubled, when it holds a
-/// comma, a quote or a line break.
+/// Appends `text` as one CSV field, quoted as the study's tables quote it
+/// (`shadowlab_analysis::report::csv_field`, RFC 4180).
 fn write_text(text: &str, out: &mut String) -> fmt::Result {
-    if text.contains([',', '"', '\r', '\n']) {
-        write!(out, "\"{}\"", text.replace('"', "\"\""))
-    } else {
-        out.write_str(text)
-    }
+    out.write_str(&csv_field(text))
 }
 
 /// Writes a `REQUIRED` column's values.
@@ -353,6 +351,7 @@ mod tests {
     use parquet::record::{Field, Row};
 
     use super::{COLUMNS, TableError, csv, parquet};
+
     use crate::record::CellRecord;
 
     /// A defined cell with every field set.
