@@ -14,6 +14,7 @@
 //!   `∇y·a = 0`) and along y. For an orthographic map `t = max(width, height)/resolution`; for a
 //!   perspective map it is the texel's width at the point's distance, in the plane facing the light.
 
+use std::cell::OnceCell;
 use std::fmt;
 
 use glam::{DMat2, DVec2, DVec3};
@@ -538,12 +539,16 @@ fn parse_term(term: &str) -> Result<Term, String> {
     }
 }
 
-/// A depth comparison ready for one lookup: the receiver's slope (or plane gradient) is found once
-/// per lookup, not once per tap.
+/// A depth comparison ready for one lookup: the receiver's slope (or plane gradient) is found at
+/// most once per lookup, not once per tap — and the slope only when a tap's decision depends on it
+/// ([`Self::lit`]).
 pub(crate) struct Comparison {
     comparison: DepthComparison,
-    /// The capped slope, for [`DepthComparison::SlopeScaled`].
-    slope: f64,
+    /// The receiver's point and window position, and its normal, for [`depth_slope`].
+    receiver: ((DVec3, DVec3), DVec3),
+    /// The capped slope, for [`DepthComparison::SlopeScaled`]: computed by the first tap that
+    /// needs it.
+    slope: OnceCell<f64>,
     /// The capped gradient per texel, for [`DepthComparison::ReceiverPlane`].
     gradient: DVec2,
 }
@@ -557,29 +562,29 @@ impl Comparison {
         (world, window): (DVec3, DVec3),
         normal: DVec3,
     ) -> Self {
-        let (slope, gradient) = match comparison {
-            DepthComparison::SlopeScaled { .. } => {
-                (depth_slope(map, (world, window), normal), DVec2::ZERO)
-            }
-            DepthComparison::ReceiverPlane { .. } => {
-                let gradient = depth_gradient(map, (world, window), normal)
-                    .filter(|g| g.is_finite())
-                    .map_or(DVec2::ZERO, |g| {
-                        g.clamp(DVec2::splat(-MAX_SLOPE), DVec2::splat(MAX_SLOPE))
-                    });
-                (0.0, gradient)
-            }
-            _ => (0.0, DVec2::ZERO),
+        let gradient = match comparison {
+            DepthComparison::ReceiverPlane { .. } => depth_gradient(map, (world, window), normal)
+                .filter(|g| g.is_finite())
+                .map_or(DVec2::ZERO, |g| {
+                    g.clamp(DVec2::splat(-MAX_SLOPE), DVec2::splat(MAX_SLOPE))
+                }),
+            _ => DVec2::ZERO,
         };
         Self {
             comparison,
-            slope,
+            receiver: ((world, window), normal),
+            slope: OnceCell::new(),
             gradient,
         }
     }
 
     /// Whether the receiver at window depth `receiver` is lit through texel `(i, j)`, read by a tap
     /// `offset` texels from the point.
+    ///
+    /// The slope-scaled limit `(z₁ + constant) + factor·slope` never falls below `z₁ + constant`
+    /// when the factor is not negative (the slope is capped to `[0, MAX_SLOPE]`, and rounding is
+    /// monotone), so a receiver at or in front of `z₁ + constant` is lit whatever its slope: the
+    /// same decision, without finding the slope.
     pub(crate) fn lit(
         &self,
         map: &ShadowMap,
@@ -596,7 +601,14 @@ impl Comparison {
         let limit = match self.comparison {
             DepthComparison::None => z1,
             DepthComparison::Constant { offset } => z1 + offset,
-            DepthComparison::SlopeScaled { constant, slope } => z1 + constant + slope * self.slope,
+            DepthComparison::SlopeScaled { constant, slope } => {
+                let base = z1 + constant;
+                if slope >= 0.0 && receiver <= base {
+                    return true;
+                }
+                let (at, normal) = self.receiver;
+                base + slope * *self.slope.get_or_init(|| depth_slope(map, at, normal))
+            }
             DepthComparison::SecondDepth => table_1(DepthBias::SecondDepth, z1, second()),
             DepthComparison::Midpoint => table_1(DepthBias::Midpoint, z1, second()),
             DepthComparison::DualDepth { max_bias } => {
