@@ -14,7 +14,6 @@
 //!   `∇y·a = 0`) and along y. For an orthographic map `t = max(width, height)/resolution`; for a
 //!   perspective map it is the texel's width at the point's distance, in the plane facing the light.
 
-use std::cell::OnceCell;
 use std::fmt;
 
 use glam::{DMat2, DVec2, DVec3};
@@ -540,51 +539,85 @@ fn parse_term(term: &str) -> Result<Term, String> {
 }
 
 /// A depth comparison ready for one lookup: the receiver's slope (or plane gradient) is found at
-/// most once per lookup, not once per tap — and the slope only when a tap's decision depends on it
-/// ([`Self::lit`]).
+/// most once per lookup, not once per tap. A lookup of several taps finds the slope up front
+/// ([`Self::lit`]); one of a single tap only when the tap's decision depends on it
+/// ([`Self::lit_only_tap`]). (Deferring it for several taps measured slower: PCF 3×3 in the lookup
+/// bench, docs/benchmarks.md.)
 pub(crate) struct Comparison {
     comparison: DepthComparison,
-    /// The receiver's point and window position, and its normal, for [`depth_slope`].
+    /// The receiver's point and window position, and its normal, for a deferred [`depth_slope`].
     receiver: ((DVec3, DVec3), DVec3),
-    /// The capped slope, for [`DepthComparison::SlopeScaled`]: computed by the first tap that
-    /// needs it.
-    slope: OnceCell<f64>,
+    /// Whether the slope is deferred to [`Self::lit_only_tap`].
+    deferred: bool,
+    /// The capped slope, for [`DepthComparison::SlopeScaled`] (0 while deferred).
+    slope: f64,
     /// The capped gradient per texel, for [`DepthComparison::ReceiverPlane`].
     gradient: DVec2,
 }
 
 impl Comparison {
     /// `comparison` for the receiver at `world` with `normal`, whose window position through
-    /// `map` is `window` (`map.setup.mapping.window(world)`, which the caller has at hand).
+    /// `map` is `window` (`map.setup.mapping.window(world)`, which the caller has at hand), read by
+    /// one tap (`one_tap`: through [`Self::lit_only_tap`]) or several (through [`Self::lit`]).
     pub(crate) fn new(
         comparison: DepthComparison,
         map: &ShadowMap,
         (world, window): (DVec3, DVec3),
         normal: DVec3,
+        one_tap: bool,
     ) -> Self {
-        let gradient = match comparison {
-            DepthComparison::ReceiverPlane { .. } => depth_gradient(map, (world, window), normal)
-                .filter(|g| g.is_finite())
-                .map_or(DVec2::ZERO, |g| {
-                    g.clamp(DVec2::splat(-MAX_SLOPE), DVec2::splat(MAX_SLOPE))
-                }),
-            _ => DVec2::ZERO,
+        let deferred = one_tap && matches!(comparison, DepthComparison::SlopeScaled { .. });
+        let (slope, gradient) = match comparison {
+            DepthComparison::SlopeScaled { .. } if !deferred => {
+                (depth_slope(map, (world, window), normal), DVec2::ZERO)
+            }
+            DepthComparison::ReceiverPlane { .. } => {
+                let gradient = depth_gradient(map, (world, window), normal)
+                    .filter(|g| g.is_finite())
+                    .map_or(DVec2::ZERO, |g| {
+                        g.clamp(DVec2::splat(-MAX_SLOPE), DVec2::splat(MAX_SLOPE))
+                    });
+                (0.0, gradient)
+            }
+            _ => (0.0, DVec2::ZERO),
         };
         Self {
             comparison,
             receiver: ((world, window), normal),
-            slope: OnceCell::new(),
+            deferred,
+            slope,
             gradient,
         }
     }
 
+    /// [`Self::lit`] for a lookup's only tap, finding a deferred slope only where the decision
+    /// depends on it. The slope-scaled limit `(z₁ + constant) + factor·slope` never falls below
+    /// `z₁ + constant` when the factor is not negative (the slope is capped to `[0, MAX_SLOPE]`,
+    /// and rounding is monotone), so a receiver at or in front of `z₁ + constant` is lit whatever
+    /// its slope: the same decision as [`Self::lit`]'s with the slope found up front.
+    pub(crate) fn lit_only_tap(
+        &self,
+        map: &ShadowMap,
+        (i, j): (u32, u32),
+        receiver: f64,
+        offset: DVec2,
+    ) -> bool {
+        if let (true, DepthComparison::SlopeScaled { constant, slope }) =
+            (self.deferred, self.comparison)
+        {
+            let base = map.depth(i, j) + constant;
+            if slope >= 0.0 && receiver <= base {
+                return true;
+            }
+            // Lit's limit, with the slope found now.
+            let capped = depth_slope(map, self.receiver.0, self.receiver.1);
+            return receiver <= base + slope * capped;
+        }
+        self.lit(map, (i, j), receiver, offset)
+    }
+
     /// Whether the receiver at window depth `receiver` is lit through texel `(i, j)`, read by a tap
     /// `offset` texels from the point.
-    ///
-    /// The slope-scaled limit `(z₁ + constant) + factor·slope` never falls below `z₁ + constant`
-    /// when the factor is not negative (the slope is capped to `[0, MAX_SLOPE]`, and rounding is
-    /// monotone), so a receiver at or in front of `z₁ + constant` is lit whatever its slope: the
-    /// same decision, without finding the slope.
     pub(crate) fn lit(
         &self,
         map: &ShadowMap,
@@ -601,14 +634,7 @@ impl Comparison {
         let limit = match self.comparison {
             DepthComparison::None => z1,
             DepthComparison::Constant { offset } => z1 + offset,
-            DepthComparison::SlopeScaled { constant, slope } => {
-                let base = z1 + constant;
-                if slope >= 0.0 && receiver <= base {
-                    return true;
-                }
-                let (at, normal) = self.receiver;
-                base + slope * *self.slope.get_or_init(|| depth_slope(map, at, normal))
-            }
+            DepthComparison::SlopeScaled { constant, slope } => z1 + constant + slope * self.slope,
             DepthComparison::SecondDepth => table_1(DepthBias::SecondDepth, z1, second()),
             DepthComparison::Midpoint => table_1(DepthBias::Midpoint, z1, second()),
             DepthComparison::DualDepth { max_bias } => {

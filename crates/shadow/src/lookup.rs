@@ -481,7 +481,9 @@ impl Lookup {
             }
             Filter::Nearest | Filter::Pcf { .. } | Filter::Disk { .. } => {}
         }
-        let comparison = Comparison::new(self.bias.comparison, map, (world, window), normal);
+        let one_tap = matches!(self.filter, Filter::Nearest);
+        let comparison =
+            Comparison::new(self.bias.comparison, map, (world, window), normal, one_tap);
         let test = |offset: DVec2, nearest: bool| {
             let Some(texel) = texel(map, centre + offset) else {
                 return 1.0;
@@ -492,11 +494,12 @@ impl Lookup {
             } else {
                 offset
             };
-            if comparison.lit(map, texel, receiver, offset) {
-                1.0
+            let lit = if nearest {
+                comparison.lit_only_tap(map, texel, receiver, offset)
             } else {
-                0.0
-            }
+                comparison.lit(map, texel, receiver, offset)
+            };
+            if lit { 1.0 } else { 0.0 }
         };
         match self.filter {
             Filter::Nearest => test(DVec2::ZERO, true),
