@@ -634,7 +634,10 @@ impl Comparison {
         let limit = match self.comparison {
             DepthComparison::None => z1,
             DepthComparison::Constant { offset } => z1 + offset,
-            DepthComparison::SlopeScaled { constant, slope } => z1 + constant + slope * self.slope,
+            DepthComparison::SlopeScaled { constant, slope } => {
+                debug_assert!(!self.deferred, "a deferred slope is read by lit_only_tap");
+                z1 + constant + slope * self.slope
+            }
             DepthComparison::SecondDepth => table_1(DepthBias::SecondDepth, z1, second()),
             DepthComparison::Midpoint => table_1(DepthBias::Midpoint, z1, second()),
             DepthComparison::DualDepth { max_bias } => {
