@@ -156,6 +156,53 @@ fn biases_remove_acne_on_a_sloped_receiver() {
     }
 }
 
+/// Claim: the nearest filter, which finds a slope-scaled receiver's slope only when its one tap's
+/// decision depends on it, decides exactly as a one-tap PCF, which finds the slope up front — on a
+/// sloped receiver (acne without bias) and across the box's shadow, for several factors
+/// (negative included, which is never deferred).
+#[test]
+fn a_deferred_slope_decides_as_one_found_up_front() {
+    let tilt = 0.35;
+    let sloped = DVec3::new(-tilt, 1.0, 0.0).normalize();
+    let scenes = [
+        (
+            render(Technique::Uniform, DVec3::new(-0.3, 1.0, 0.2), tilt, false),
+            sloped,
+        ),
+        (
+            render(Technique::Uniform, DVec3::new(0.0, 1.0, 0.0), 0.0, false),
+            DVec3::Y,
+        ),
+    ];
+    let mut decided = [0_usize; 2];
+    for (constant, slope) in [(1e-5, 2.0), (0.0, 0.5), (1e-4, 0.0), (2e-3, -1.0)] {
+        let bias = Bias::new(DepthComparison::SlopeScaled { constant, slope });
+        let nearest = Lookup::new(bias, Filter::Nearest);
+        let one_tap = Lookup::new(bias, Filter::Pcf { size: 1 });
+        for (map, normal) in &scenes {
+            for k in 0..900 {
+                let (x, z) = (
+                    -6.0 + 0.4 * f64::from(k % 30),
+                    -6.0 + 0.4 * f64::from(k / 30),
+                );
+                let y = if *normal == DVec3::Y { 0.0 } else { tilt * x };
+                let point = DVec3::new(x, y, z);
+                let lit = nearest.lit_fraction(map, point, *normal);
+                assert_eq!(
+                    lit,
+                    one_tap.lit_fraction(map, point, *normal),
+                    "{bias} at {point}"
+                );
+                decided[usize::from(lit == 1.0)] += 1;
+            }
+        }
+    }
+    assert!(
+        decided[0] > 100 && decided[1] > 100,
+        "shadowed, lit: {decided:?}"
+    );
+}
+
 /// Claim: filters give fractions strictly between 0 and 1 near the shadow's edge; deep inside the
 /// shadow and far outside they agree with the nearest test (VSM within its Chebyshev bound: the
 /// variance floor leaves a lit fraction of about `σ²_min/(t − μ)²` in the umbra).
