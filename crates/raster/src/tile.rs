@@ -114,7 +114,9 @@ impl TargetSize {
         value: impl Fn(T) -> U + Sync,
     ) -> Vec<U> {
         let w = self.width as usize;
-        let mut out = vec![U::default(); self.pixel_count()];
+        // Written in parallel (not `vec!`, whose zeroing glibc does on the calling thread when it
+        // reuses freed memory, which a series of same-sized images makes the common case).
+        let mut out: Vec<U> = rayon::iter::repeat_n(U::default(), self.pixel_count()).collect();
         out.par_chunks_mut(w * TILE_SIZE)
             .enumerate()
             .for_each(|(ty, band)| {
@@ -160,7 +162,8 @@ impl TiledPlane {
     /// A plane of `size`'s tiles, cleared to `value`.
     pub(crate) fn new(size: TargetSize, value: u32) -> Self {
         Self {
-            values: vec![0; size.tile_count() * TILE_PIXELS],
+            // Written in parallel, as `untile`'s image.
+            values: rayon::iter::repeat_n(0, size.tile_count() * TILE_PIXELS).collect(),
             clear_value: value,
             cleared: vec![true; size.tile_count()],
         }

@@ -180,9 +180,11 @@ impl ShadowMap {
             }
             Ok(())
         };
-        // Zeroed pages from the allocator; each row fills its own in parallel.
-        let mut nearest = vec![0.0; side * side];
-        let mut second = vec![0.0; if options.second_depth { side * side } else { 0 }];
+        // Zeroed in parallel (`vec!` zeroes on this thread when the allocator reuses freed memory,
+        // as it does for a series of same-sized maps); each row then fills its own.
+        let zeros = |n: usize| -> Vec<f64> { rayon::iter::repeat_n(0.0, n).collect() };
+        let mut nearest = zeros(side * side);
+        let mut second = zeros(if options.second_depth { side * side } else { 0 });
         let rows = nearest.par_chunks_mut(side).enumerate();
         if options.second_depth {
             rows.zip(second.par_chunks_mut(side))

@@ -588,7 +588,8 @@ pub fn lit_at(shadow: &LightShadow, eye: &Eye, image: &EyeImage) -> Vec<f64> {
 pub fn lit_with(shadow: &LightShadow, lookups: &[Lookup], eye: &Eye, image: &EyeImage) -> Vec<f64> {
     assert_eq!(lookups.len(), shadow.maps.len(), "one lookup per map");
     let width = image.width as usize;
-    let mut lit = vec![1.0; image.triangle.len()];
+    // Filled in parallel: `vec!` would on this thread.
+    let mut lit: Vec<f64> = rayon::iter::repeat_n(1.0, image.triangle.len()).collect();
     lit.par_chunks_mut(width * LOOKUP_ROWS)
         .enumerate()
         .for_each(|(chunk, rows)| {
