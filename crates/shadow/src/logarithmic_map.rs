@@ -16,6 +16,9 @@ pub struct LogarithmicMap {
     pub(crate) depth: f64,
     /// κ = 1/λ = d/n', 0 for the uniform limit.
     pub(crate) kappa: f64,
+    /// `ln(1 + κ)` (`kappa.ln_1p()`, the same bits), the warp's range: kept so that a lookup
+    /// takes one logarithm and a derivative none.
+    pub(crate) log_range: f64,
     /// Lateral extents of x/w over B.
     pub(crate) left: f64,
     pub(crate) right: f64,
@@ -106,7 +109,7 @@ impl LogarithmicMap {
         // is exact near τ = 0 and for small κ; τ = s at κ = 0.
         let s = 0.5 * (y + 1.0);
         let tau = if self.kappa > 0.0 {
-            (s * self.kappa.ln_1p()).exp_m1() / self.kappa
+            (s * self.log_range).exp_m1() / self.kappa
         } else {
             s
         };
@@ -136,14 +139,14 @@ impl LogarithmicMap {
     #[must_use]
     pub fn view_axis_error(&self, sin_gamma: f64, t: f64) -> f64 {
         let axis = t * sin_gamma;
-        self.kappa.ln_1p() * (1.0 + self.z_max / axis) + self.depth / (self.slope() * axis)
+        self.log_range * (1.0 + self.z_max / axis) + self.depth / (self.slope() * axis)
     }
 
     /// The warp axis's map coordinate in `[0, 1]` of a point a fraction τ through B:
     /// `ln(1 + κτ)/ln(1 + κ)`, τ itself at κ = 0.
     fn warp(&self, tau: f64) -> f64 {
         if self.kappa > 0.0 {
-            (self.kappa * tau).ln_1p() / self.kappa.ln_1p()
+            (self.kappa * tau).ln_1p() / self.log_range
         } else {
             tau
         }
@@ -152,7 +155,7 @@ impl LogarithmicMap {
     /// `κ/ln(1 + κ)`, the warp's slope at τ = 0; 1 at κ = 0.
     fn slope(&self) -> f64 {
         if self.kappa > 0.0 {
-            self.kappa / self.kappa.ln_1p()
+            self.kappa / self.log_range
         } else {
             1.0
         }
