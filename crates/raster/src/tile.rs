@@ -114,8 +114,7 @@ impl TargetSize {
         value: impl Fn(T) -> U + Sync,
     ) -> Vec<U> {
         let w = self.width as usize;
-        // Written in parallel (not `vec!`, whose zeroing glibc does on the calling thread when it
-        // reuses freed memory, which a series of same-sized images makes the common case).
+        // Filled by the workers, not `vec!` (docs/CONVENTIONS.md, "Large buffers").
         let mut out: Vec<U> = rayon::iter::repeat_n(U::default(), self.pixel_count()).collect();
         out.par_chunks_mut(w * TILE_SIZE)
             .enumerate()
@@ -162,7 +161,7 @@ impl TiledPlane {
     /// A plane of `size`'s tiles, cleared to `value`.
     pub(crate) fn new(size: TargetSize, value: u32) -> Self {
         Self {
-            // Written in parallel, as `untile`'s image.
+            // Filled by the workers, not `vec!` (docs/CONVENTIONS.md, "Large buffers").
             values: rayon::iter::repeat_n(0, size.tile_count() * TILE_PIXELS).collect(),
             clear_value: value,
             cleared: vec![true; size.tile_count()],

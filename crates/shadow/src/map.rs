@@ -180,8 +180,8 @@ impl ShadowMap {
             }
             Ok(())
         };
-        // Zeroed in parallel (`vec!` zeroes on this thread when the allocator reuses freed memory,
-        // as it does for a series of same-sized maps); each row then fills its own.
+        // Filled by the workers, not `vec!` (docs/CONVENTIONS.md, "Large buffers"); each row then
+        // fills its own.
         let zeros = |n: usize| -> Vec<f64> { rayon::iter::repeat_n(0.0, n).collect() };
         let mut nearest = zeros(side * side);
         let mut second = zeros(if options.second_depth { side * side } else { 0 });

@@ -588,7 +588,7 @@ pub fn lit_at(shadow: &LightShadow, eye: &Eye, image: &EyeImage) -> Vec<f64> {
 pub fn lit_with(shadow: &LightShadow, lookups: &[Lookup], eye: &Eye, image: &EyeImage) -> Vec<f64> {
     assert_eq!(lookups.len(), shadow.maps.len(), "one lookup per map");
     let width = image.width as usize;
-    // Filled in parallel: `vec!` would on this thread.
+    // Filled by the workers, not `vec!` (docs/CONVENTIONS.md, "Large buffers").
     let mut lit: Vec<f64> = rayon::iter::repeat_n(1.0, image.triangle.len()).collect();
     lit.par_chunks_mut(width * LOOKUP_ROWS)
         .enumerate()
