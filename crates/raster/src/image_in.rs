@@ -210,36 +210,46 @@ pub fn depth_from_png16(
     width: u32,
     height: u32,
 ) -> Result<Vec<f64>, DepthImageError> {
-    use image::ImageDecoder as _;
     const KIND: &str = "PNG";
-    let decode = |e: image::ImageError| DepthImageError::Decode {
+    let decode = |e: png::DecodingError| DepthImageError::Decode {
         kind: KIND,
         message: e.to_string(),
     };
-    let decoder = image::codecs::png::PngDecoder::new(Cursor::new(bytes)).map_err(decode)?;
-    let (w, h) = decoder.dimensions();
-    check_size(KIND, (u64::from(w), u64::from(h)), width, height)?;
-    let colour = decoder.color_type();
-    if colour != image::ColorType::L16 {
+    // No memory limit of the codec's own: the size is checked against the one asked for first.
+    let mut decoder =
+        png::Decoder::new_with_limits(Cursor::new(bytes), png::Limits { bytes: usize::MAX });
+    // Palettes and bit depths below 8 expanded, 16 bits kept.
+    decoder.set_transformations(png::Transformations::EXPAND);
+    let header = decoder.read_header_info().map_err(decode)?;
+    check_size(
+        KIND,
+        (u64::from(header.width), u64::from(header.height)),
+        width,
+        height,
+    )?;
+    let mut reader = decoder.read_info().map_err(decode)?;
+    let (colour, depth) = reader.output_color_type();
+    if (colour, depth) != (png::ColorType::Grayscale, png::BitDepth::Sixteen) {
         return Err(DepthImageError::Content {
             kind: KIND,
-            found: format!("{colour:?} pixels"),
+            found: format!("{colour:?} pixels of {} bits", depth as u8),
             expected: "16-bit greyscale (L16)",
         });
     }
-    let image::DynamicImage::ImageLuma16(buffer) =
-        image::DynamicImage::from_decoder(decoder).map_err(decode)?
-    else {
-        return Err(DepthImageError::Content {
+    let size = reader
+        .output_buffer_size()
+        .ok_or_else(|| DepthImageError::Decode {
             kind: KIND,
-            found: "pixels that do not decode as 16-bit greyscale".into(),
-            expected: "16-bit greyscale (L16)",
-        });
-    };
-    let values: Vec<f64> = buffer
-        .into_raw()
-        .into_iter()
-        .map(|k| f64::from(k) / 65535.0)
+            message: "its pixels do not fit in memory".into(),
+        })?;
+    // Decoded serially, once: nothing for the workers to fill.
+    let mut samples = vec![0; size];
+    reader.next_frame(&mut samples).map_err(decode)?;
+    let values: Vec<f64> = samples
+        .as_chunks::<2>()
+        .0
+        .iter()
+        .map(|&pair| f64::from(u16::from_be_bytes(pair)) / 65535.0)
         .collect();
     Ok(bottom_up(&values, width as usize, height as usize))
 }

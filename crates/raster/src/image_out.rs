@@ -108,25 +108,26 @@ pub fn depth_png16(depths: &[f64], width: u32, height: u32) -> Result<Vec<u8>, R
     let values: Vec<u16> = top_down(depths, w, h)
         .map(|z| (z.clamp(0.0, 1.0) * 65535.0 + 0.5) as u16)
         .collect();
-    let image = image::ImageBuffer::<image::Luma<u16>, Vec<u16>>::from_raw(width, height, values)
-        .ok_or(RasterError::ImageSize {
-        width,
-        height,
-        values: depths.len(),
-    })?;
-    encode_png(&image::DynamicImage::ImageLuma16(image))
+    // PNG stores 16-bit samples big-endian.
+    let bytes: Vec<u8> = values.iter().flat_map(|v| v.to_be_bytes()).collect();
+    encode_png(
+        &bytes,
+        (width, height),
+        png::ColorType::Grayscale,
+        png::BitDepth::Sixteen,
+    )
 }
 
 /// 8-bit RGB pixels (`[r, g, b]` per pixel, row 0 at the bottom) as a PNG.
 pub fn rgb_png(pixels: &[[u8; 3]], width: u32, height: u32) -> Result<Vec<u8>, RasterError> {
     let (w, h) = check_len(pixels.len(), width, height, 1)?;
     let values: Vec<u8> = top_down(pixels, w, h).flatten().collect();
-    let image = image::RgbImage::from_raw(width, height, values).ok_or(RasterError::ImageSize {
-        width,
-        height,
-        values: pixels.len(),
-    })?;
-    encode_png(&image::DynamicImage::ImageRgb8(image))
+    encode_png(
+        &values,
+        (width, height),
+        png::ColorType::Rgb,
+        png::BitDepth::Eight,
+    )
 }
 
 /// Window depths as a NumPy `.npy` file (version 1.0, little-endian f32, shape `(height, width)`,
@@ -193,12 +194,26 @@ pub fn array_npy<T: NpyElement>(
     Ok(bytes)
 }
 
-fn encode_png(image: &image::DynamicImage) -> Result<Vec<u8>, RasterError> {
-    let mut bytes = Cursor::new(Vec::new());
-    image
-        .write_to(&mut bytes, image::ImageFormat::Png)
-        .map_err(|e| RasterError::Encode(e.to_string()))?;
-    Ok(bytes.into_inner())
+/// `data` (rows top first, samples big-endian) as a PNG of `size` pixels: the `png` crate's fast
+/// compression and adaptive filter, the settings of the `image` crate's encoder, which wrote these
+/// files before it was dropped from the build — the same bytes.
+fn encode_png(
+    data: &[u8],
+    (width, height): (u32, u32),
+    colour: png::ColorType,
+    depth: png::BitDepth,
+) -> Result<Vec<u8>, RasterError> {
+    let encode = |e: png::EncodingError| RasterError::Encode(e.to_string());
+    let mut bytes = Vec::new();
+    let mut encoder = png::Encoder::new(&mut bytes, width, height);
+    encoder.set_color(colour);
+    encoder.set_depth(depth);
+    encoder.set_compression(png::Compression::Fast);
+    encoder.set_filter(png::Filter::Adaptive);
+    let mut writer = encoder.write_header().map_err(encode)?;
+    writer.write_image_data(data).map_err(encode)?;
+    writer.finish().map_err(encode)?;
+    Ok(bytes)
 }
 
 #[cfg(test)]

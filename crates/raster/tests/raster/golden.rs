@@ -119,20 +119,37 @@ fn check_ids(name: &str, ids: &[u32], width: u32, height: u32) {
     };
     if updating() {
         std::fs::create_dir_all(golden_dir()).unwrap();
-        image::RgbaImage::from_raw(width, height, pixels)
-            .unwrap()
-            .save(&path)
-            .unwrap();
+        let file = std::io::BufWriter::new(std::fs::File::create(&path).unwrap());
+        let mut encoder = png::Encoder::new(file, width, height);
+        encoder.set_color(png::ColorType::Rgba);
+        encoder.set_depth(png::BitDepth::Eight);
+        let mut writer = encoder.write_header().unwrap();
+        writer.write_image_data(&pixels).unwrap();
+        writer.finish().unwrap();
         return;
     }
-    let golden = image::open(&path)
-        .unwrap_or_else(|e| panic!("{}: {e} (create it with UPDATE_GOLDEN=1)", path.display()))
-        .to_rgba8();
+    let golden = read_rgba8(&path)
+        .unwrap_or_else(|e| panic!("{}: {e} (create it with UPDATE_GOLDEN=1)", path.display()));
     assert_eq!(
-        golden.as_raw(),
-        &pixels,
+        golden, pixels,
         "{name}: triangle ids differ from the golden image"
     );
+}
+
+/// The pixels of an 8-bit RGBA PNG, rows top first.
+fn read_rgba8(path: &std::path::Path) -> Result<Vec<u8>, String> {
+    let file = std::fs::File::open(path).map_err(|e| e.to_string())?;
+    let mut reader = png::Decoder::new(std::io::BufReader::new(file))
+        .read_info()
+        .map_err(|e| e.to_string())?;
+    let format = reader.output_color_type();
+    if format != (png::ColorType::Rgba, png::BitDepth::Eight) {
+        return Err(format!("{format:?} pixels, not 8-bit RGBA"));
+    }
+    let mut pixels = vec![0; reader.output_buffer_size().ok_or("too large")?];
+    let frame = reader.next_frame(&mut pixels).map_err(|e| e.to_string())?;
+    pixels.truncate(frame.buffer_size());
+    Ok(pixels)
 }
 
 #[test]
