@@ -3,6 +3,10 @@
 //! 4096²) and the eye pass (perspective, 1024×768), clear + draw, f32 depth, depth test less, no
 //! culling — on 1 and 2 threads. Setup (loading, allocation) is outside the timing.
 //!
+//! `image_out`: the PNG writers on one thread — a 1024×768 colour picture of flat bands and edges,
+//! about as compressible as the pictures `analyze` writes (four per technique), and a 2048² 16-bit
+//! depth preview of a smooth ramp.
+//!
 //! The Stanford bunny is in data/meshes; the dragon is used when data/meshes/dragon.obj exists
 //! (`data/meshes/fetch-dragon.sh` makes it) and reported as absent otherwise. Figures are recorded in
 //! docs/benchmarks.md.
@@ -70,5 +74,37 @@ fn passes(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, passes);
+fn image_out(c: &mut Criterion) {
+    use shadowlab_raster::image_out::{depth_png16, rgb_png};
+    let mut group = c.benchmark_group("image_out");
+    group.sample_size(20);
+    let (width, height) = (1024u32, 768u32);
+    // Bands of a few colours with a diagonal edge: about as compressible as the pictures.
+    let palette = [
+        [40u8, 40, 48],
+        [200, 190, 170],
+        [90, 140, 60],
+        [230, 60, 40],
+    ];
+    let picture: Vec<[u8; 3]> = (0..height)
+        .flat_map(|y| {
+            (0..width).map(move |x| palette[((x / 64 + y / 48 + (x + y) / 300) % 4) as usize])
+        })
+        .collect();
+    group.throughput(Throughput::Elements(u64::from(width * height)));
+    group.bench_function("rgb_png/1024x768", |b| {
+        b.iter(|| rgb_png(black_box(&picture), width, height).expect("encode"));
+    });
+    let side = 2048u32;
+    let depths: Vec<f64> = (0..side * side)
+        .map(|k| f64::from(k % side + k / side) / f64::from(2 * side))
+        .collect();
+    group.throughput(Throughput::Elements(u64::from(side * side)));
+    group.bench_function("depth_png16/2048", |b| {
+        b.iter(|| depth_png16(black_box(&depths), side, side).expect("encode"));
+    });
+    group.finish();
+}
+
+criterion_group!(benches, passes, image_out);
 criterion_main!(benches);

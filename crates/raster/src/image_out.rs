@@ -15,11 +15,14 @@ use std::io::Cursor;
 
 use crate::error::RasterError;
 
-/// Row-major `width × height` values with row 0 at the bottom, yielded top row first.
-fn top_down<T: Copy>(values: &[T], width: usize, height: usize) -> impl Iterator<Item = T> + '_ {
-    (0..height)
-        .rev()
-        .flat_map(move |row| values[row * width..(row + 1) * width].iter().copied())
+/// Row-major values with row 0 at the bottom, copied top row first, a row at a time (`width` > 0
+/// dividing `values.len()`, as [`check_len`] ensures).
+fn top_down<T: Copy>(values: &[T], width: usize) -> Vec<T> {
+    let mut flipped = Vec::with_capacity(values.len());
+    for row in values.chunks_exact(width).rev() {
+        flipped.extend_from_slice(row);
+    }
+    flipped
 }
 
 fn check_len(
@@ -75,10 +78,10 @@ pub fn layers_exr(
     use exr::prelude::*;
     let mut channels = SmallVec::new();
     for (name, layer) in layers {
-        let (w, h) = check_len(layer.len(), width, height, 1)?;
+        let (w, _) = check_len(layer.len(), width, height, 1)?;
         let samples = match layer {
-            ExrLayer::F32(values) => FlatSamples::F32(top_down(values, w, h).collect()),
-            ExrLayer::U32(values) => FlatSamples::U32(top_down(values, w, h).collect()),
+            ExrLayer::F32(values) => FlatSamples::F32(top_down(values, w)),
+            ExrLayer::U32(values) => FlatSamples::U32(top_down(values, w)),
         };
         channels.push(AnyChannel::new(*name, samples));
     }
@@ -99,19 +102,22 @@ pub fn layers_exr(
 
 /// Window depths as a 16-bit greyscale PNG preview: `round(z·65535)`, far (1) white.
 pub fn depth_png16(depths: &[f64], width: u32, height: u32) -> Result<Vec<u8>, RasterError> {
-    let (w, h) = check_len(depths.len(), width, height, 1)?;
+    let (w, _) = check_len(depths.len(), width, height, 1)?;
     #[expect(
         clippy::cast_possible_truncation,
         clippy::cast_sign_loss,
         reason = "clamped to [0, 65535.5)"
     )]
-    let values: Vec<u16> = top_down(depths, w, h)
+    let unorm: Vec<u16> = depths
+        .chunks_exact(w)
+        .rev()
+        .flatten()
         .map(|z| (z.clamp(0.0, 1.0) * 65535.0 + 0.5) as u16)
         .collect();
     // PNG stores 16-bit samples big-endian.
-    let bytes: Vec<u8> = values.iter().flat_map(|v| v.to_be_bytes()).collect();
+    let samples: Vec<u8> = unorm.iter().flat_map(|v| v.to_be_bytes()).collect();
     encode_png(
-        &bytes,
+        &samples,
         (width, height),
         png::ColorType::Grayscale,
         png::BitDepth::Sixteen,
@@ -120,10 +126,9 @@ pub fn depth_png16(depths: &[f64], width: u32, height: u32) -> Result<Vec<u8>, R
 
 /// 8-bit RGB pixels (`[r, g, b]` per pixel, row 0 at the bottom) as a PNG.
 pub fn rgb_png(pixels: &[[u8; 3]], width: u32, height: u32) -> Result<Vec<u8>, RasterError> {
-    let (w, h) = check_len(pixels.len(), width, height, 1)?;
-    let values: Vec<u8> = top_down(pixels, w, h).flatten().collect();
+    let (w, _) = check_len(pixels.len(), width, height, 1)?;
     encode_png(
-        &values,
+        top_down(pixels, w).as_flattened(),
         (width, height),
         png::ColorType::Rgb,
         png::BitDepth::Eight,
@@ -306,7 +311,7 @@ mod tests {
 
     #[test]
     fn rows_are_flipped_to_top_first() {
-        let v: Vec<u8> = top_down(&[1, 2, 3, 4, 5, 6], 3, 2).collect();
+        let v: Vec<u8> = top_down(&[1, 2, 3, 4, 5, 6], 3);
         assert_eq!(v, [4, 5, 6, 1, 2, 3]);
     }
 }
