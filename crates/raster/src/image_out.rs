@@ -199,7 +199,7 @@ pub fn array_npy<T: NpyElement>(
     Ok(bytes)
 }
 
-/// `data` (rows top first, samples big-endian) as a PNG of `size` pixels: the `png` crate's fast
+/// `data` (rows top first, samples big-endian) as a `width × height` PNG: the `png` crate's fast
 /// compression and adaptive filter, the settings of the `image` crate's encoder, which wrote these
 /// files before it was dropped from the build — the same bytes.
 fn encode_png(
