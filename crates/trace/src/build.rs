@@ -56,6 +56,7 @@ use std::cell::RefCell;
 
 use glam::DVec3;
 use rayon::prelude::*;
+use wide::f64x4;
 
 use crate::triangle::{BLOCK, TriangleBlock, TriangleVertices};
 
@@ -96,27 +97,28 @@ impl Lanes {
 
     /// Lane by lane `a < b ? a : b`: for the finite coordinates of boxes the same values as
     /// `f64::min` (up to the sign of a zero, which no comparison sees), in one instruction.
+    ///
+    /// Written as `wide`'s `fast_min` (x86's `minpd`, which is defined as that select), not as the
+    /// select itself: LLVM turns a select between a bin's stored box and a triangle's box, stored
+    /// back, into a masked store (`vmaskmovpd`), slow on AMD's Zen 1: the whole build took a third
+    /// longer there (docs/benchmarks.md, "Masked stores").
     #[inline(always)]
     fn min(self, other: Self) -> Self {
-        Self(std::array::from_fn(|k| {
-            if self.0[k] < other.0[k] {
-                self.0[k]
-            } else {
-                other.0[k]
-            }
-        }))
+        Self(
+            f64x4::from(self.0)
+                .fast_min(f64x4::from(other.0))
+                .to_array(),
+        )
     }
 
-    /// Lane by lane `a > b ? a : b` (see [`Lanes::min`]).
+    /// Lane by lane `a > b ? a : b` (see [`Lanes::min`]; `maxpd`).
     #[inline(always)]
     fn max(self, other: Self) -> Self {
-        Self(std::array::from_fn(|k| {
-            if self.0[k] > other.0[k] {
-                self.0[k]
-            } else {
-                other.0[k]
-            }
-        }))
+        Self(
+            f64x4::from(self.0)
+                .fast_max(f64x4::from(other.0))
+                .to_array(),
+        )
     }
 
     #[inline(always)]
