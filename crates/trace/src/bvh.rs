@@ -454,11 +454,9 @@ impl Bvh {
         single: impl Fn(&PreparedRay, &mut Stack) -> T + Sync,
         packet: impl Fn(&[PreparedRay], &Packet, &mut PacketStack, &mut [T]) + Sync,
     ) -> Vec<T> {
-        // Filled in parallel: `vec![T::default(); n]` is written by one thread while the others
-        // wait, which for the 4 M answers of a 2048² grid (160 MB of `Option<Hit>`) showed in the
-        // batch's time on two threads (docs/benchmarks.md, "Masked stores").
-        let mut out = Vec::with_capacity(rays.len());
-        out.par_extend(rayon::iter::repeat_n(T::default(), rays.len()));
+        // Filled by the workers, not `vec!` (docs/CONVENTIONS.md, "Large buffers"): a 2048² grid's
+        // answers are 160 MB of `Option<Hit>`.
+        let mut out: Vec<T> = rayon::iter::repeat_n(T::default(), rays.len()).collect();
         out.par_chunks_mut(RAY_CHUNK)
             .zip(rays.par_chunks(RAY_CHUNK))
             .enumerate()
