@@ -53,8 +53,10 @@ impl EyeTarget {
         let (width, height) = (size.width() as usize, size.height() as usize);
         let depth = self.depths();
         let triangle = self.triangles();
-        let mut position = vec![DVec3::ZERO; width * height];
-        let mut normal = vec![DVec3::ZERO; width * height];
+        // Filled by the workers, not `vec!` (docs/CONVENTIONS.md, "Large buffers").
+        let zeros =
+            || -> Vec<DVec3> { rayon::iter::repeat_n(DVec3::ZERO, width * height).collect() };
+        let (mut position, mut normal) = (zeros(), zeros());
         let (fw, fh) = (width as f64, height as f64);
         position
             .par_chunks_mut(width)
