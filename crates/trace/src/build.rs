@@ -121,6 +121,11 @@ impl Lanes {
         )
     }
 
+    /// Lanes 0 to 2 as a point.
+    fn point(self) -> DVec3 {
+        DVec3::new(self.0[0], self.0[1], self.0[2])
+    }
+
     #[inline(always)]
     fn add(self, other: Self) -> Self {
         Self(std::array::from_fn(|k| self.0[k] + other.0[k]))
@@ -592,41 +597,86 @@ fn median_split(prims: &mut [Prim], centers: &Aabb) -> usize {
 /// A lane is an inner node (`count == 0`, `child` = its node index), a leaf (`count > 0`
 /// triangles from `child` on in leaf order), or unused (`count == 0`, `child == u32::MAX`, and an
 /// empty box `lo = +∞, hi = −∞`, which no ray enters).
+///
+/// The boxes are stored in f32, each bound rounded outward ([`round_down`], [`round_up`]), so a
+/// node is 128 bytes, two cache lines, where f64 bounds made it 224: random rays spend most of
+/// their time waiting for nodes (docs/benchmarks.md, "f32 node boxes"). A stored box contains the
+/// build's f64 box, and the box test is monotone in the bounds (the `bvh` module), so a ray enters
+/// every box it would have entered: answers do not change, only a few more boxes are visited.
 #[derive(Clone, Debug, PartialEq)]
+#[repr(C, align(64))]
 pub(crate) struct Node4 {
-    /// Lower bounds per axis, per lane.
-    pub(crate) lo: [[f64; 4]; 3],
-    /// Upper bounds per axis, per lane.
-    pub(crate) hi: [[f64; 4]; 3],
+    /// Lower bounds per axis, per lane, rounded down.
+    lo: [[f32; 4]; 3],
+    /// Upper bounds per axis, per lane, rounded up.
+    hi: [[f32; 4]; 3],
     /// Node index or first triangle.
     pub(crate) child: [u32; 4],
     /// Triangle count of a leaf lane; 0 otherwise.
     pub(crate) count: [u32; 4],
 }
 
+/// The largest f32 at most `x` (−∞ below f32's range).
+fn round_down(x: f64) -> f32 {
+    #[expect(clippy::cast_possible_truncation, reason = "rounded outward next")]
+    let near = x as f32;
+    if f64::from(near) > x {
+        near.next_down()
+    } else {
+        near
+    }
+}
+
+/// The smallest f32 at least `x` (+∞ above f32's range).
+fn round_up(x: f64) -> f32 {
+    #[expect(clippy::cast_possible_truncation, reason = "rounded outward next")]
+    let near = x as f32;
+    if f64::from(near) < x {
+        near.next_up()
+    } else {
+        near
+    }
+}
+
 impl Node4 {
-    const EMPTY: Self = Self {
-        lo: [[f64::INFINITY; 4]; 3],
-        hi: [[f64::NEG_INFINITY; 4]; 3],
+    /// The node with four unused lanes.
+    pub(crate) const EMPTY: Self = Self {
+        lo: [[f32::INFINITY; 4]; 3],
+        hi: [[f32::NEG_INFINITY; 4]; 3],
         child: [u32::MAX; 4],
         count: [0; 4],
     };
 
-    /// Sets `lane` to the box `bounds` and the leaf or node `child` with `count` triangles.
-    fn set(&mut self, lane: usize, bounds: &Aabb, child: usize, count: usize) {
+    /// Sets `lane` to the box `bounds`, rounded outward, and the leaf or node `child` with
+    /// `count` triangles.
+    pub(crate) fn set(&mut self, lane: usize, bounds: &Aabb, child: usize, count: usize) {
         for axis in 0..3 {
-            self.lo[axis][lane] = bounds.lo.0[axis];
-            self.hi[axis][lane] = bounds.hi.0[axis];
+            self.lo[axis][lane] = round_down(bounds.lo.0[axis]);
+            self.hi[axis][lane] = round_up(bounds.hi.0[axis]);
         }
         self.child[lane] = u32::try_from(child).expect("index fits u32");
         self.count[lane] = u32::try_from(count).expect("leaf size fits u32");
     }
+
+    /// The four lanes' lower bounds on `axis` (exactly the stored f32 values).
+    #[inline(always)]
+    pub(crate) fn lower(&self, axis: usize) -> [f64; 4] {
+        self.lo[axis].map(f64::from)
+    }
+
+    /// The four lanes' upper bounds on `axis`.
+    #[inline(always)]
+    pub(crate) fn upper(&self, axis: usize) -> [f64; 4] {
+        self.hi[axis].map(f64::from)
+    }
 }
 
-/// The 4-wide tree: nodes in depth-first order (root first), and its depth.
+/// The 4-wide tree: nodes in depth-first order (root first), its depth, and the exact bounding
+/// box `(lo, hi)` of the triangles (`None` without triangles).
 pub(crate) struct Tree {
     pub(crate) nodes: Vec<Node4>,
     pub(crate) depth: usize,
+    pub(crate) bounds: Option<(DVec3, DVec3)>,
 }
 
 /// Builds the tree over `prims`, permuting them into leaf order.
@@ -635,6 +685,7 @@ pub(crate) fn build(prims: &mut [Prim]) -> Tree {
         return Tree {
             nodes: Vec::new(),
             depth: 0,
+            bounds: None,
         };
     }
     let extent = prims
@@ -642,6 +693,7 @@ pub(crate) fn build(prims: &mut [Prim]) -> Tree {
         .map(Extent::of)
         .reduce(|| Extent::EMPTY, Extent::union);
     let root = Range::new(prims, 0, extent, 0);
+    let bounds = Some((root.extent.bounds.lo.point(), root.extent.bounds.hi.point()));
     let mut nodes = Vec::new();
     let depth = if root.split.is_some() {
         subtree(root, &mut nodes)
@@ -651,7 +703,11 @@ pub(crate) fn build(prims: &mut [Prim]) -> Tree {
         nodes.push(node);
         1
     };
-    Tree { nodes, depth }
+    Tree {
+        nodes,
+        depth,
+        bounds,
+    }
 }
 
 /// Appends the 4-wide subtree of an inner range to `nodes` (its root first, at `nodes.len()`);
@@ -759,4 +815,42 @@ pub(crate) fn leaf_blocks(
         })
         .collect_into_vec(&mut blocks);
     blocks
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{round_down, round_up};
+
+    /// The f32 bounds are the nearest ones outward: exact values stay, others move to the
+    /// neighbouring f32 on the outer side, and beyond f32's range a bound becomes infinite.
+    #[test]
+    fn node_bounds_round_outward_to_the_nearest_f32() {
+        let third = 1.0 / 3.0;
+        let (down, up) = (round_down(third), round_up(third));
+        assert!(f64::from(down) < third && third < f64::from(up));
+        assert_eq!(down.next_up(), up);
+        for exact in [
+            0.0,
+            -0.0,
+            1.5,
+            -(2f64.powi(-140)),
+            f64::from(f32::MAX),
+            f64::INFINITY,
+        ] {
+            assert_eq!(f64::from(round_down(exact)), exact);
+            assert_eq!(f64::from(round_up(exact)), exact);
+        }
+        // The trace crate accepts coordinates up to 2^200, past f32's largest value.
+        let huge = 2f64.powi(200);
+        assert_eq!(round_down(huge), f32::MAX);
+        assert_eq!(round_up(huge), f32::INFINITY);
+        assert_eq!(round_down(-huge), f32::NEG_INFINITY);
+        assert_eq!(round_up(-huge), -f32::MAX);
+        // And down to tiny ones, below f32's smallest subnormal.
+        let tiny = 2f64.powi(-200);
+        assert_eq!(round_down(tiny), 0.0);
+        assert_eq!(round_up(tiny), f32::from_bits(1));
+        assert_eq!(round_down(-tiny), -f32::from_bits(1));
+        assert!(round_up(-tiny) == 0.0);
+    }
 }

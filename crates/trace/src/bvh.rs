@@ -32,9 +32,13 @@
 //!    `(e − 7u·R)/|d_axis| > 8.9u·R/|d_axis|` by which the grown box's slab exceeds the `7u·R`
 //!    box's. So the computed interval of a grown box contains the exact interval of the `7u·R`
 //!    box: the box test never rejects a box that holds a watertight hit.
-//! 3. A triangle's reported `t` is clamped into the computed interval of its own grown box, and
-//!    every step of the slab computation is monotone in the box's bounds, so that interval lies in
-//!    the interval of every box above it. The traversal visits every box whose interval meets
+//! 3. A triangle's reported `t` is clamped into the computed interval of its own grown box (from
+//!    its f64 vertices). The nodes store their boxes in f32, each bound rounded outward, so every
+//!    stored box above the triangle contains the triangle's box. Every step of the slab
+//!    computation is monotone in the box's bounds, so that interval lies in the interval of every
+//!    stored box above it. (Monotone also with an infinite inverse: as the entry plane moves
+//!    outward, its product goes from +∞ through NaN, which the comparisons ignore, to −∞; and the
+//!    exit plane's the other way.) The traversal visits every box whose interval meets
 //!    `[t_min, t_best]`; hence it sees every triangle whose reported `t` could win.
 //!
 //! With ties broken by triangle index, the result is a function of the ray and the mesh alone:
@@ -121,6 +125,8 @@ pub struct Bvh {
     blocks: Vec<TriangleBlock>,
     /// Indices of the zero-area triangles, ascending.
     degenerate: Vec<u32>,
+    /// The exact bounding box of the stored triangles (the nodes' boxes are rounded outward).
+    bounds: Option<(DVec3, DVec3)>,
     /// The largest absolute coordinate of a stored triangle's vertex.
     magnitude: f64,
     depth: usize,
@@ -149,26 +155,6 @@ fn vertices(p: [DVec3; 3]) -> TriangleVertices {
     [
         p[0].x, p[0].y, p[0].z, p[1].x, p[1].y, p[1].z, p[2].x, p[2].y, p[2].z,
     ]
-}
-
-/// The bounding box `(lo, hi)` of the tree's root node's children; `None` without nodes.
-fn root_bounds(nodes: &[Node4]) -> Option<(DVec3, DVec3)> {
-    let root = nodes.first()?;
-    let mut lo = DVec3::INFINITY;
-    let mut hi = DVec3::NEG_INFINITY;
-    for lane in 0..4 {
-        lo = lo.min(DVec3::new(
-            root.lo[0][lane],
-            root.lo[1][lane],
-            root.lo[2][lane],
-        ));
-        hi = hi.max(DVec3::new(
-            root.hi[0][lane],
-            root.hi[1][lane],
-            root.hi[2][lane],
-        ));
-    }
-    Some((lo, hi))
 }
 
 /// Panics with the error's message if `t_min` or `t_max` is NaN.
@@ -250,11 +236,14 @@ impl Bvh {
                 Prim::new(a.min(b).min(c), a.max(b).max(c), id)
             })
             .collect();
-        let build::Tree { mut nodes, depth } = build::build(&mut prims);
-        // The root's box holds every stored vertex and is bounded by them: its largest absolute
+        let build::Tree {
+            mut nodes,
+            depth,
+            bounds,
+        } = build::build(&mut prims);
+        // The box holds every stored vertex and is bounded by them: its largest absolute
         // coordinate is theirs.
-        let magnitude =
-            root_bounds(&nodes).map_or(0.0, |(lo, hi)| lo.abs().max(hi.abs()).max_element());
+        let magnitude = bounds.map_or(0.0, |(lo, hi)| lo.abs().max(hi.abs()).max_element());
         debug_assert!(depth <= build::MAX_DEPTH);
         let blocks = build::leaf_blocks(&mut nodes, &prims, |id| {
             vertices(corners(&triangles[id as usize]))
@@ -265,6 +254,7 @@ impl Bvh {
             nodes,
             blocks,
             degenerate,
+            bounds,
             magnitude,
             depth,
         })
@@ -293,7 +283,7 @@ impl Bvh {
     /// The bounding box `(lo, hi)` of the stored triangles; `None` when there is none.
     #[must_use]
     pub fn bounds(&self) -> Option<(DVec3, DVec3)> {
-        root_bounds(&self.nodes)
+        self.bounds
     }
 
     /// The shape of the tree.
@@ -530,9 +520,9 @@ impl Bvh {
         let mut far = [t_hi; 4];
         for axis in 0..3 {
             let (entry, exit) = if ray.negative[axis] {
-                (&node.hi[axis], &node.lo[axis])
+                (node.upper(axis), node.lower(axis))
             } else {
-                (&node.lo[axis], &node.hi[axis])
+                (node.lower(axis), node.upper(axis))
             };
             let (near_origin, far_origin) = (ray.near_origin[axis], ray.far_origin[axis]);
             let inverse = ray.inverse[axis];

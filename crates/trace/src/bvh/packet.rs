@@ -125,9 +125,9 @@ impl Packet {
         let mut far = *t_hi;
         for axis in 0..3 {
             let (entry, exit) = if self.negative[axis] {
-                (node.hi[axis][lane], node.lo[axis][lane])
+                (node.upper(axis)[lane], node.lower(axis)[lane])
             } else {
-                (node.lo[axis][lane], node.hi[axis][lane])
+                (node.lower(axis)[lane], node.upper(axis)[lane])
             };
             for i in 0..PACKET {
                 let t_entry = (entry - self.near_origin[axis][i]) * self.inverse[axis][i];
@@ -151,9 +151,9 @@ impl Packet {
         let mut far = [t_hi; 4];
         for axis in 0..3 {
             let (entry, exit) = if self.negative[axis] {
-                (&node.hi[axis], &node.lo[axis])
+                (node.upper(axis), node.lower(axis))
             } else {
-                (&node.lo[axis], &node.hi[axis])
+                (node.lower(axis), node.upper(axis))
             };
             let (lo, hi) = (self.inverse_lo[axis], self.inverse_hi[axis]);
             for lane in 0..4 {
@@ -378,7 +378,7 @@ mod tests {
     use glam::DVec3;
 
     use super::{PACKET, Packet};
-    use crate::build::Node4;
+    use crate::build::{Aabb, Lanes, Node4};
     use crate::ray::{PreparedRay, Ray};
 
     /// A small deterministic generator (SplitMix64).
@@ -450,24 +450,21 @@ mod tests {
                 })
                 .collect();
             assert!(packet.set(&rays));
-            let mut node = Node4 {
-                lo: [[0.0; 4]; 3],
-                hi: [[0.0; 4]; 3],
-                child: [0; 4],
-                count: [1; 4],
-            };
+            let mut node = Node4::EMPTY;
             for lane in 0..4 {
                 let (a, b) = (rng.point(2.0), rng.point(2.0));
-                for axis in 0..3 {
-                    node.lo[axis][lane] = a[axis].min(b[axis]);
-                    node.hi[axis][lane] = a[axis].max(b[axis]);
-                }
+                let (lo, hi) = (a.min(b), a.max(b));
+                let bounds = Aabb {
+                    lo: Lanes([lo.x, lo.y, lo.z, 0.0]),
+                    hi: Lanes([hi.x, hi.y, hi.z, 0.0]),
+                };
+                node.set(lane, &bounds, 0, 1);
             }
             let (t_lo, t_hi) = (rng.range(-1.0, 1.0), rng.range(1.0, 9.0));
             let (near, far) = packet.children(&node, t_lo, t_hi);
             for lane in 0..4 {
-                let lo = [node.lo[0][lane], node.lo[1][lane], node.lo[2][lane]];
-                let hi = [node.hi[0][lane], node.hi[1][lane], node.hi[2][lane]];
+                let lo = [0, 1, 2].map(|axis| node.lower(axis)[lane]);
+                let hi = [0, 1, 2].map(|axis| node.upper(axis)[lane]);
                 for ray in &rays {
                     let (ray_near, ray_far) = ray.slab(lo, hi, t_lo, t_hi);
                     if ray_near <= ray_far {
