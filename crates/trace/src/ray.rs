@@ -136,9 +136,13 @@ pub(crate) struct PreparedRay {
 impl PreparedRay {
     /// Sets `ray` up against a mesh whose largest absolute vertex coordinate is `magnitude`.
     ///
+    /// Always inlined: out of line, the batch queries read each prepared ray back in a wider
+    /// load than the stores that wrote it, a store-forwarding stall (docs/benchmarks.md, "f32 node
+    /// boxes and an inlined ray set-up").
+    ///
     /// # Errors
     /// As [`Ray::validate`].
-    #[inline]
+    #[inline(always)]
     pub(crate) fn new(ray: &Ray, magnitude: f64) -> Result<Self, TraceError> {
         ray.validate()?;
         let o = ray.origin.to_array();
