@@ -40,6 +40,7 @@ mod error;
 pub mod faces;
 mod focus;
 mod frame;
+mod gather;
 mod input;
 pub mod logarithmic;
 mod logarithmic_map;

@@ -13,6 +13,7 @@ use shadowlab_scene::{Scene, SceneLight};
 use shadowlab_trace::Bvh;
 
 use crate::error::ShadowError;
+use crate::gather::gather;
 use crate::input::{Eye, FocusPolicy, LightSource, PlanInput};
 use crate::lookup::Lookup;
 use crate::map::{MapOptions, ShadowMap};
@@ -292,13 +293,9 @@ pub fn plan_light(
                          and none was given"
                     .into(),
             })?;
-            let samples: Vec<DVec3> = image
-                .triangle
-                .par_iter()
-                .zip(&image.position)
-                .filter(|(t, _)| **t != NO_TRIANGLE)
-                .map(|(_, p)| *p)
-                .collect();
+            let samples = gather(&image.position, |pixel, _| {
+                image.triangle[pixel] != NO_TRIANGLE
+            });
             return sdsm::plan(&input, &samples, variant, partitions);
         }
         _ => {}

@@ -95,6 +95,7 @@ use shadowlab_params::{DepthRange, ParamError};
 
 use crate::error::ShadowError;
 use crate::frame::LightFrame;
+use crate::gather::gather;
 use crate::input::{LightSource, PlanInput};
 use crate::partition::Partition;
 use crate::setup::{LightSetup, ProjectiveMapping, ShadowMapping};
@@ -139,13 +140,13 @@ impl SdsmVariant {
         if depths.is_empty() {
             return Err(ShadowError::NoSamples);
         }
-        if depths.iter().any(|d| !d.is_finite()) {
+        if depths.par_iter().any(|d| !d.is_finite()) {
             return Err(HullError::NonFinite {
                 parameter: "depths",
             }
             .into());
         }
-        if depths.iter().any(|d| *d <= 0.0) {
+        if depths.par_iter().any(|d| *d <= 0.0) {
             return Err(ShadowError::NotDefined {
                 technique: KEY,
                 reason: "a sample lies at or behind the eye's plane (eye depth ≤ 0), where the \
@@ -155,11 +156,12 @@ impl SdsmVariant {
         }
         Ok(match self {
             Self::Log => {
+                // Positive finite depths: their least and greatest, whatever the order.
+                let empty = (f64::INFINITY, f64::NEG_INFINITY);
                 let (min, max) = depths
-                    .iter()
-                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), d| {
-                        (lo.min(*d), hi.max(*d))
-                    });
+                    .par_iter()
+                    .fold(|| empty, |(lo, hi), d| (lo.min(*d), hi.max(*d)))
+                    .reduce(|| empty, |(lo, hi), (l, h)| (lo.min(l), hi.max(h)));
                 logarithmic(min, max, count)?
             }
             Self::Kmeans => kmeans(depths, count),
@@ -248,12 +250,13 @@ fn midpoints(centres: &[f64]) -> impl Iterator<Item = f64> + '_ {
     centres.windows(2).map(|c| c[0] + 0.5 * (c[1] - c[0]))
 }
 
-/// One sample: its world position, eye depth and light-frame position.
+/// One sample: its world position, eye depth and light-frame position (`None` where a spot's
+/// transform sends it behind the light).
 #[derive(Clone, Copy, Debug)]
 struct Sample {
     world: DVec3,
     depth: f64,
-    light: DVec3,
+    light: Option<DVec3>,
 }
 
 /// Plans the sample distribution shadow map of `input`'s light: `count` z-partitions (fewer where
@@ -281,7 +284,7 @@ pub fn plan(
     count: usize,
 ) -> Result<Vec<Partition>, ShadowError> {
     check_count(count)?;
-    if samples.iter().any(|p| !p.is_finite()) {
+    if samples.par_iter().any(|p| !p.is_finite()) {
         return Err(HullError::NonFinite {
             parameter: "samples",
         }
@@ -290,39 +293,28 @@ pub fn plan(
     let frame = LightFrame::new(&input.eye, &input.light, KEY)?;
     let to_light = frame.world_to_light();
     let (e, v) = (input.eye.pose.eye(), input.eye.pose.forward());
-    // In parallel, in the samples' order.
-    let samples: Vec<Sample> = samples
+    // Every pass over the samples is parallel, and keeps the samples' order (`gather`).
+    let samples: Vec<Sample> = gather(samples, |_, p| input.light.reaches(*p))
         .par_iter()
-        .filter(|p| input.light.reaches(**p))
-        .map(|&world| {
-            Ok(Sample {
-                world,
-                depth: (world - e).dot(v),
-                light: light_point(&to_light, world).ok_or(ShadowError::LightInsideFocusBody)?,
-            })
+        .map(|&world| Sample {
+            world,
+            depth: (world - e).dot(v),
+            light: light_point(&to_light, world),
         })
-        .collect::<Result<_, ShadowError>>()?;
-    let depths: Vec<f64> = samples.iter().map(|s| s.depth).collect();
+        .collect();
+    if samples.par_iter().any(|s| s.light.is_none()) {
+        return Err(ShadowError::LightInsideFocusBody);
+    }
+    let depths: Vec<f64> = samples.par_iter().map(|s| s.depth).collect();
     let boundaries = variant.boundaries(&depths, count)?;
     let nears = merged_nears(&boundaries, &depths);
-    // Each partition's samples in the samples' order: all of them, moved, for one partition;
-    // else counted first, so that each list is allocated once.
+    // Each partition's samples in the samples' order: all of them, moved, for one partition.
     let served: Vec<Vec<Sample>> = if nears.len() == 1 {
         vec![samples]
     } else {
-        let index: Vec<usize> = samples
-            .par_iter()
-            .map(|s| serving_index(&nears, s.depth))
-            .collect();
-        let mut counts = vec![0; nears.len()];
-        for &k in &index {
-            counts[k] += 1;
-        }
-        let mut served: Vec<Vec<Sample>> = counts.into_iter().map(Vec::with_capacity).collect();
-        for (sample, k) in samples.into_iter().zip(index) {
-            served[k].push(sample);
-        }
-        served
+        (0..nears.len())
+            .map(|k| gather(&samples, |_, s| serving_index(&nears, s.depth) == k))
+            .collect()
     };
     let reach = caster_reach(input, &frame)?;
     let half_fov = input
@@ -397,10 +389,19 @@ fn serving_index(nears: &[f64], depth: f64) -> usize {
 /// left out, the first one at the smallest depth.
 fn merged_nears(boundaries: &[f64], depths: &[f64]) -> Vec<f64> {
     let nears = &boundaries[..boundaries.len() - 1];
-    let mut held = vec![false; nears.len()];
-    for depth in depths {
-        held[serving_index(nears, *depth)] = true;
-    }
+    let none = || vec![false; nears.len()];
+    let held = depths
+        .par_iter()
+        .fold(none, |mut held, depth| {
+            held[serving_index(nears, *depth)] = true;
+            held
+        })
+        .reduce(none, |mut held, other| {
+            for (held, other) in held.iter_mut().zip(other) {
+                *held |= other;
+            }
+            held
+        });
     let mut merged: Vec<f64> = nears
         .iter()
         .zip(&held)
@@ -553,7 +554,7 @@ impl Window {
 /// light, flat axes widened, then moved out where rounding puts a sample outside
 /// ([half-open window](#half-open-window)).
 fn fit(to_light: &DMat4, samples: &[Sample], reach: f64) -> Result<Window, ShadowError> {
-    let (lo, mut hi) = bounds(samples, |sample| Some(sample.light))?;
+    let (lo, mut hi) = bounds(samples, |sample| sample.light)?;
     hi.y = hi.y.max(reach);
     let mut window = Window { lo, hi }.unflattened()?;
     for pass in 0..ROUNDING_PASSES {
