@@ -543,10 +543,13 @@ fn parse_term(term: &str) -> Result<Term, String> {
 /// ([`Self::lit`]); one of a single tap only when the tap's decision depends on it
 /// ([`Self::lit_only_tap`]). (Deferring it for several taps measured slower: PCF 3×3 in the lookup
 /// bench, docs/benchmarks.md.)
-pub(crate) struct Comparison {
+pub(crate) struct Comparison<'a> {
     comparison: DepthComparison,
-    /// The receiver's point and window position, and its normal, for a deferred [`depth_slope`].
-    receiver: ((DVec3, DVec3), DVec3),
+    /// The receiver's point and window position, and its normal, for a deferred [`depth_slope`]:
+    /// borrowed from the lookup, not copied. (A copy read the pair back just after the lookup had
+    /// stored it, in wider loads than its stores: a store-forwarding stall, docs/benchmarks.md,
+    /// "The receiver borrowed".)
+    receiver: (&'a (DVec3, DVec3), &'a DVec3),
     /// Whether the slope is deferred to [`Self::lit_only_tap`].
     deferred: bool,
     /// The capped slope, for [`DepthComparison::SlopeScaled`] (0 while deferred).
@@ -555,24 +558,25 @@ pub(crate) struct Comparison {
     gradient: DVec2,
 }
 
-impl Comparison {
-    /// `comparison` for the receiver at `world` with `normal`, whose window position through
-    /// `map` is `window` (`map.setup.mapping.window(world)`, which the caller has at hand), read by
-    /// one tap (`one_tap`: through [`Self::lit_only_tap`]) or several (through [`Self::lit`]).
+impl<'a> Comparison<'a> {
+    /// `comparison` for the receiver `at = (world, window)` with `normal`: its point and its window
+    /// position through `map` (`map.setup.mapping.window(world)`, which the caller has at hand),
+    /// read by one tap (`one_tap`: through [`Self::lit_only_tap`]) or several (through
+    /// [`Self::lit`]).
     pub(crate) fn new(
         comparison: DepthComparison,
         map: &ShadowMap,
-        (world, window): (DVec3, DVec3),
-        normal: DVec3,
+        at: &'a (DVec3, DVec3),
+        normal: &'a DVec3,
         one_tap: bool,
     ) -> Self {
         let deferred = one_tap && matches!(comparison, DepthComparison::SlopeScaled { .. });
         let (slope, gradient) = match comparison {
             DepthComparison::SlopeScaled { .. } if !deferred => {
-                (depth_slope(map, (world, window), normal), DVec2::ZERO)
+                (depth_slope(map, *at, *normal), DVec2::ZERO)
             }
             DepthComparison::ReceiverPlane { .. } => {
-                let gradient = depth_gradient(map, (world, window), normal)
+                let gradient = depth_gradient(map, *at, *normal)
                     .filter(|g| g.is_finite())
                     .map_or(DVec2::ZERO, |g| {
                         g.clamp(DVec2::splat(-MAX_SLOPE), DVec2::splat(MAX_SLOPE))
@@ -583,7 +587,7 @@ impl Comparison {
         };
         Self {
             comparison,
-            receiver: ((world, window), normal),
+            receiver: (at, normal),
             deferred,
             slope,
             gradient,
@@ -610,7 +614,7 @@ impl Comparison {
                 return true;
             }
             // Lit's limit, with the slope found now.
-            let capped = depth_slope(map, self.receiver.0, self.receiver.1);
+            let capped = depth_slope(map, *self.receiver.0, *self.receiver.1);
             return receiver <= base + slope * capped;
         }
         self.lit(map, (i, j), receiver, offset)

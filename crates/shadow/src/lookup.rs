@@ -482,8 +482,8 @@ impl Lookup {
             Filter::Nearest | Filter::Pcf { .. } | Filter::Disk { .. } => {}
         }
         let one_tap = matches!(self.filter, Filter::Nearest);
-        let comparison =
-            Comparison::new(self.bias.comparison, map, (world, window), normal, one_tap);
+        let at = (world, window);
+        let comparison = Comparison::new(self.bias.comparison, map, &at, &normal, one_tap);
         let test = |offset: DVec2, nearest: bool| {
             let Some(texel) = texel(map, centre + offset) else {
                 return 1.0;
