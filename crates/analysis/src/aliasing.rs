@@ -353,9 +353,14 @@ pub struct AliasingStats {
     pub count: u64,
 }
 
-/// Values per parallel work item of [`par_stats`]'s sum and maximum. Any size gives the same
-/// result: the sum is exact and the maximum is unique in the total order.
+/// Values per parallel work item of the statistics. Any size gives the same result: the sum is
+/// exact, and the maximum, the counts and the selected percentile are integers or unique in the
+/// total order.
 const STATS_CHUNK: usize = 1 << 14;
+/// Bits of the key by which one pass of the percentile's selection buckets the candidates.
+const SELECT_DIGIT_BITS: u32 = 11;
+/// Candidates few enough to be selected among directly, on one thread.
+const SELECT_DIRECT: usize = 1 << 12;
 
 /// The maximum, 99th percentile (nearest rank: the `⌈0.99·n⌉`-th smallest of `n` values, no
 /// interpolation; values ordered by `f64::total_cmp`) and mean of `values`, NaNs left out (and not
@@ -363,25 +368,46 @@ const STATS_CHUNK: usize = 1 << 14;
 /// order — the mean is their exact sum, rounded once, over their count. With no values, every
 /// field is 0.
 #[must_use]
-pub fn stats(values: impl Iterator<Item = f64> + Send) -> AliasingStats {
-    par_stats(values.par_bridge())
+pub fn stats(values: impl Iterator<Item = f64>) -> AliasingStats {
+    let values: Vec<f64> = values.collect();
+    stats_of(&values, |&value| Some(value))
 }
 
-/// [`stats`] of values a parallel iterator yields: the same statistics, whatever order the values
-/// arrive in. The percentile is selected, not sorted for (linear time), and the sum and maximum are
-/// reduced in parallel.
+/// The key of a value: an integer that orders as `f64::total_cmp` orders the values (negatives'
+/// bits inverted, positives' sign bit set). Its own inverse is [`value_of_key`].
+fn key_of(value: f64) -> u64 {
+    let bits = value.to_bits();
+    bits ^ ((bits >> 63).wrapping_neg() | (1 << 63))
+}
+
+/// The value whose key is `key` ([`key_of`]).
+fn value_of_key(key: u64) -> f64 {
+    f64::from_bits(key ^ ((key >> 63).wrapping_sub(1) | (1 << 63)))
+}
+
+/// [`stats`] of `value(item)` over `items` (`None` and NaN left out), in parallel and in place:
+/// each chunk of [`STATS_CHUNK`] items keys its values ([`key_of`]) and takes their maximum and
+/// exact sum; the percentile is then selected among the chunks' keys by [`select`], without
+/// gathering them into one list — no pass over all values runs on one thread.
 #[must_use]
-pub fn par_stats(values: impl ParallelIterator<Item = f64>) -> AliasingStats {
-    // Keys are integers that order as `f64::total_cmp` orders the values (the key `total_cmp`
-    // itself compares): selecting among integers is cheaper than by the comparison. The map
-    // between bits and keys flips the magnitude bits of negatives; it is its own inverse.
-    let flip = |bits: i64| bits ^ ((bits >> 63).cast_unsigned() >> 1).cast_signed();
-    let mut keys: Vec<i64> = values
-        .filter(|v| !v.is_nan())
-        .map(|v| flip(v.to_bits().cast_signed()))
+pub fn stats_of<T: Sync>(items: &[T], value: impl Fn(&T) -> Option<f64> + Sync) -> AliasingStats {
+    let chunks: Vec<ChunkStats> = items
+        .par_chunks(STATS_CHUNK)
+        .map(|chunk| {
+            let keys: Vec<u64> = chunk
+                .iter()
+                .filter_map(&value)
+                .filter(|v| !v.is_nan())
+                .map(key_of)
+                .collect();
+            ChunkStats {
+                max: keys.iter().max().copied(),
+                sum: ExactSum::of(keys.iter().map(|&key| value_of_key(key))),
+                keys,
+            }
+        })
         .collect();
-    let value = |key: i64| f64::from_bits(flip(key).cast_unsigned());
-    let Some(&max) = keys.par_iter().max() else {
+    let Some(max) = chunks.iter().filter_map(|chunk| chunk.max).max() else {
         return AliasingStats {
             max: 0.0,
             p99: 0.0,
@@ -389,22 +415,86 @@ pub fn par_stats(values: impl ParallelIterator<Item = f64>) -> AliasingStats {
             count: 0,
         };
     };
-    let sum = keys
-        .par_chunks(STATS_CHUNK)
-        .map(|chunk| ExactSum::of(chunk.iter().map(|&key| value(key))))
-        .reduce(ExactSum::new, ExactSum::merged);
-    let n = keys.len();
+    let n: usize = chunks.iter().map(|chunk| chunk.keys.len()).sum();
     let rank = (99 * n).div_ceil(100);
-    let (_, &mut p99, _) = keys.select_nth_unstable(rank - 1);
+    let keys: Vec<&[u64]> = chunks.iter().map(|chunk| chunk.keys.as_slice()).collect();
+    let p99 = select(&keys, n, rank - 1);
+    let sum = chunks
+        .into_iter()
+        .fold(ExactSum::new(), |total, chunk| total.merged(chunk.sum));
     #[expect(
         clippy::cast_precision_loss,
         reason = "pixel counts are far below 2^53"
     )]
     let mean = sum.value() / n as f64;
     AliasingStats {
-        max: value(max),
-        p99: value(p99),
+        max: value_of_key(max),
+        p99: value_of_key(p99),
         mean,
         count: n as u64,
     }
+}
+
+/// What [`stats_of`] keeps of one chunk of values.
+struct ChunkStats {
+    /// The values' keys ([`key_of`]), in the chunk's order.
+    keys: Vec<u64>,
+    /// The largest key.
+    max: Option<u64>,
+    /// The values' exact sum.
+    sum: ExactSum,
+}
+
+/// The key of rank `rank` (0 the smallest) among the `count` keys of `chunks`: a most-significant-
+/// digit radix selection. Each pass counts, in parallel, the candidates — the keys that share the
+/// digits decided so far — by their next [`SELECT_DIGIT_BITS`] bits, and keeps the bucket that
+/// holds the rank; once at most [`SELECT_DIRECT`] candidates are left they are gathered and
+/// selected among directly. The counts are integers, so the answer does not depend on the split.
+fn select(chunks: &[&[u64]], count: usize, mut rank: usize) -> u64 {
+    // The top `decided` bits of the answer are those of `prefix`; `candidates` keys share them.
+    let (mut prefix, mut decided, mut candidates) = (0_u64, 0_u32, count);
+    let shares = |key: u64, prefix: u64, decided: u32| {
+        decided == 0 || key >> (64 - decided) == prefix >> (64 - decided)
+    };
+    while candidates > SELECT_DIRECT && decided < 64 {
+        let bits = SELECT_DIGIT_BITS.min(64 - decided);
+        let shift = 64 - decided - bits;
+        let digit_mask = (1_u64 << bits) - 1;
+        let digit_of = |key: u64| usize::try_from((key >> shift) & digit_mask).expect("11 bits");
+        let buckets = chunks
+            .par_iter()
+            .map(|keys| {
+                let mut buckets = vec![0_usize; 1 << bits];
+                for &key in *keys {
+                    if shares(key, prefix, decided) {
+                        buckets[digit_of(key)] += 1;
+                    }
+                }
+                buckets
+            })
+            .reduce(
+                || vec![0; 1 << bits],
+                |mut total, part| {
+                    total.iter_mut().zip(part).for_each(|(t, p)| *t += p);
+                    total
+                },
+            );
+        let mut digit = 0;
+        while rank >= buckets[digit] {
+            rank -= buckets[digit];
+            digit += 1;
+        }
+        prefix |= (digit as u64) << shift;
+        decided += bits;
+        candidates = buckets[digit];
+    }
+    let mut left: Vec<u64> = chunks
+        .par_iter()
+        .flat_map_iter(|keys| {
+            keys.iter()
+                .copied()
+                .filter(move |&key| shares(key, prefix, decided))
+        })
+        .collect();
+    *left.select_nth_unstable(rank).1
 }

@@ -23,7 +23,7 @@ use rayon::prelude::*;
 use shadowlab_params::FilterableMethod;
 use shadowlab_shadow::{Filter, Storage};
 
-use crate::aliasing::{AliasingStats, par_stats};
+use crate::aliasing::{AliasingStats, stats_of};
 use crate::truth::{LIT_THRESHOLD, Truth};
 
 /// A filterable method and where its map holds its moments: what a texel of it stores.
@@ -141,7 +141,7 @@ pub fn filter_leaks(
         leaks,
         over_darkening,
         // The statistics depend on the multiset of distances only, whatever order they came in.
-        extent: par_stats(extents.into_par_iter()),
+        extent: stats_of(&extents, |&extent| Some(extent)),
         bytes_per_texel: stored.bytes_per_texel(),
     }
 }

@@ -3,7 +3,6 @@
 
 use std::time::{Duration, Instant};
 
-use rayon::prelude::*;
 use shadowlab_raster::{DepthFormat, EyeImage, NO_TRIANGLE};
 use shadowlab_scene::{Scene, SceneLight};
 use shadowlab_shadow::optimal::OptimalOptions;
@@ -14,7 +13,7 @@ use shadowlab_shadow::{
 };
 use shadowlab_trace::Bvh;
 
-use crate::aliasing::{AliasingStats, Footprint, footprints_served, par_stats};
+use crate::aliasing::{AliasingStats, Footprint, footprints_served, stats_of};
 use crate::attribution::{Attribution, Causes, attribute, cause_image};
 use crate::classify::{Misclassification, difference_image, disagreement, misclassification};
 use crate::error::AnalysisError;
@@ -464,11 +463,8 @@ pub(crate) fn outcome(
     leaks: Option<FilterLeaks>,
 ) -> Outcome {
     let start = Instant::now();
-    // filter_map, not flatten: rayon's flatten makes a parallel iterator of every Option.
-    let part = |f: fn(&Footprint) -> f64| {
-        par_stats(per_pixel.par_iter().filter_map(|p| p.as_ref().map(f)))
-    };
-    // The three sets summarised side by side (each sort in parallel too): the same statistics.
+    let part = |f: fn(&Footprint) -> f64| stats_of(per_pixel, |p| p.as_ref().map(f));
+    // The three sets summarised side by side (each in parallel too): the same statistics.
     let (total, (perspective, projection)) = rayon::join(
         || part(|f| f.total),
         || rayon::join(|| part(|f| f.perspective), || part(|f| f.projection)),

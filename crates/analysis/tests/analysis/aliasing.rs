@@ -373,6 +373,64 @@ fn statistics_have_the_documented_values() {
     assert_eq!(s.max.to_bits(), 0.0f64.to_bits());
 }
 
+/// The nearest-rank 99th percentile and the maximum of `values` by sorting them (`total_cmp`).
+fn sorted_p99_and_max(values: &[f64]) -> (f64, f64) {
+    let mut sorted = values.to_vec();
+    sorted.sort_by(f64::total_cmp);
+    let rank = (99 * sorted.len()).div_ceil(100);
+    (sorted[rank - 1], sorted[sorted.len() - 1])
+}
+
+/// Claim: the percentile the statistics select (a radix selection over chunks of values) is the
+/// one a full sort gives, bit for bit, on 1 and 3 threads — for sets small enough to be selected
+/// directly and large ones that take several bucketing passes, values spread over many binades or
+/// crowded into a few texels' worth of one, duplicates, all values equal, both signs and zeros,
+/// subnormals and infinities; the maximum too.
+#[test]
+fn the_selected_percentile_is_the_sorted_one() {
+    // SplitMix64, seed 15.
+    let mut state = 15_u64;
+    let mut next = move || {
+        state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = state;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    };
+    let mut sets: Vec<Vec<f64>> = Vec::new();
+    for n in [1, 99, 100, 101, 4096, 4097, 16_385, 70_001] {
+        // Spread: any finite double of either sign, by its bits.
+        sets.push(
+            (0..n)
+                .map(|_| f64::from_bits(next() & !(0x7ff << 52) | ((next() % 2047) << 52)))
+                .collect(),
+        );
+        // Crowded: 4 096 distinct values near 300, each many times, and a few outliers.
+        sets.push(
+            (0..n)
+                .map(|k| match k % 997 {
+                    0 => f64::INFINITY,
+                    1 => -0.0,
+                    2 => 0.0,
+                    3 => f64::MIN_POSITIVE / 8.0,
+                    _ => 300.0 + f64::from((next() % 4096) as u32) * 1e-9,
+                })
+                .collect(),
+        );
+        // All equal.
+        sets.push(vec![7.25; n]);
+    }
+    for values in &sets {
+        let (p99, max) = sorted_p99_and_max(values);
+        for threads in [1, 3] {
+            let s = on_threads(threads, || stats(values.iter().copied()));
+            assert_eq!(s.p99.to_bits(), p99.to_bits(), "{} values", values.len());
+            assert_eq!(s.max.to_bits(), max.to_bits(), "{} values", values.len());
+            assert_eq!(s.count, values.len() as u64);
+        }
+    }
+}
+
 /// Claim: the footprints of a LiSPSM map and a logarithmic one of a ground with a box are
 /// identical on 1, 2 and 3 threads, and defined at nearly every visible pixel.
 #[test]
