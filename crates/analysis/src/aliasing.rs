@@ -374,7 +374,7 @@ pub fn stats(values: impl Iterator<Item = f64>) -> AliasingStats {
 }
 
 /// The key of a value: an integer that orders as `f64::total_cmp` orders the values (negatives'
-/// bits inverted, positives' sign bit set). Its own inverse is [`value_of_key`].
+/// bits inverted, positives' sign bit set), undone by [`value_of_key`].
 fn key_of(value: f64) -> u64 {
     let bits = value.to_bits();
     bits ^ ((bits >> 63).wrapping_neg() | (1 << 63))
