@@ -386,8 +386,9 @@ fn value_of_key(key: u64) -> f64 {
 }
 
 /// [`stats`] of `value(item)` over `items` (`None` and NaN left out), in parallel and in place:
-/// each chunk of [`STATS_CHUNK`] items keys its values ([`key_of`]) and takes their maximum and
-/// exact sum; the percentile is then selected among the chunks' keys by [`select`], without
+/// each chunk of `STATS_CHUNK` items keys its values (integers that order as `f64::total_cmp`
+/// orders the values) and takes their maximum and exact sum; the percentile is then selected among
+/// the chunks' keys by a radix selection whose bucket counts are taken in parallel, without
 /// gathering them into one list — no pass over all values runs on one thread.
 #[must_use]
 pub fn stats_of<T: Sync>(items: &[T], value: impl Fn(&T) -> Option<f64> + Sync) -> AliasingStats {
