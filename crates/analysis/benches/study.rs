@@ -10,6 +10,11 @@
 //! the scene's triangles; the dual-paraboloid map, two hemispheres cast one ray per texel), at
 //! 2000². Everything is deterministic.
 //!
+//! And the measurement's own phases for that combination, which every combination of a study
+//! pays once: the per-pixel texel footprints (`study::frame_footprints`), and their statistics
+//! (`aliasing::stats_of` of the total, perspective and projection parts, as `study::outcome`
+//! takes them).
+//!
 //! Figures are recorded with the machine and date in docs/benchmarks.md.
 
 use std::hint::black_box;
@@ -18,6 +23,7 @@ use std::time::Duration;
 use criterion::measurement::WallTime;
 use criterion::{BenchmarkGroup, Criterion, criterion_group, criterion_main};
 use glam::DVec3;
+use shadowlab_analysis::aliasing::{Footprint, stats_of};
 use shadowlab_analysis::study::{self, EyePass, Setting, StudyOptions};
 use shadowlab_analysis::truth::{exact_truth, scene_bvh};
 use shadowlab_raster::DepthFormat;
@@ -76,7 +82,33 @@ fn whole_study(c: &mut Criterion) {
     ] {
         one_combination(&mut group, &room, &options, technique, name);
     }
+    footprint_phases(&mut group, &scene, &options);
     group.finish();
+}
+
+/// The footprints of lispsm at 2000² on `scene`'s eye pass, and their three statistics.
+fn footprint_phases(
+    group: &mut BenchmarkGroup<'_, WallTime>,
+    scene: &Scene,
+    options: &StudyOptions,
+) {
+    let eye = EyePass::new(scene).expect("the eye pass");
+    let bvh = scene_bvh(scene).expect("the hierarchy");
+    let setting = Setting {
+        technique: Technique::Lispsm(WarpChoice::PAPER),
+        resolution: 2000,
+        partitions: 1,
+        filter: Filter::Nearest,
+    };
+    let shadows = study::render(scene, options, &setting, &eye, &bvh).expect("render");
+    group.bench_function("outdoor/footprints", |b| {
+        b.iter(|| study::frame_footprints(scene, &eye.image, black_box(&shadows)));
+    });
+    let per_pixel = study::frame_footprints(scene, &eye.image, &shadows);
+    let parts: [fn(&Footprint) -> f64; 3] = [|f| f.total, |f| f.perspective, |f| f.projection];
+    group.bench_function("outdoor/footprint-stats", |b| {
+        b.iter(|| parts.map(|part| stats_of(black_box(&per_pixel), |p| p.as_ref().map(part))));
+    });
 }
 
 /// One combination of `technique` at 2000², nearest lookups, on `scene`'s prepared eye pass:

@@ -152,7 +152,9 @@ enum At<'a> {
 
 impl At<'_> {
     /// The derivative of the window coordinates `(x, y)` along `direction` (per unit, window
-    /// units); `None` where the logarithmic map has none.
+    /// units); `None` where the logarithmic map has none. Inlined into [`local`], so that its
+    /// three calls' chains of products and divisions overlap (docs/benchmarks.md).
+    #[inline(always)]
     fn derivative(&self, direction: DVec3) -> Option<DVec2> {
         match self {
             Self::Projective { m, clip: p } => {
