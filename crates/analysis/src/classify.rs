@@ -58,29 +58,44 @@ impl AddAssign for Misclassification {
     }
 }
 
+/// Pixels per parallel work item of [`compare`]. Any size gives the same counts: they are integers.
+const COMPARE_CHUNK: usize = 1 << 14;
+
 /// Counts one light's pairs: `truth` and `outside_cone` per pixel, `judged(pixel)` the compared
-/// classification (`None`: not judged there).
+/// classification (`None`: not judged there); in parallel over chunks of `COMPARE_CHUNK` pixels,
+/// whose integer counts are summed.
 pub(crate) fn compare(
     truth: &[Option<bool>],
     outside_cone: &[bool],
-    judged: impl Fn(usize) -> Option<bool>,
+    judged: impl Fn(usize) -> Option<bool> + Sync,
 ) -> Misclassification {
-    let mut count = Misclassification::default();
-    for (pixel, (truth, outside)) in truth.iter().zip(outside_cone).enumerate() {
-        let (Some(truly_lit), false) = (*truth, *outside) else {
-            continue;
-        };
-        let Some(lit) = judged(pixel) else {
-            continue;
-        };
-        count.visible += 1;
-        match (lit, truly_lit) {
-            (true, false) => count.falsely_lit += 1,
-            (false, true) => count.falsely_shadowed += 1,
-            _ => {}
-        }
-    }
-    count
+    truth
+        .par_chunks(COMPARE_CHUNK)
+        .zip(outside_cone.par_chunks(COMPARE_CHUNK))
+        .enumerate()
+        .map(|(chunk, (truth, outside_cone))| {
+            let first = chunk * COMPARE_CHUNK;
+            let mut count = Misclassification::default();
+            for (k, (truth, outside)) in truth.iter().zip(outside_cone).enumerate() {
+                let (Some(truly_lit), false) = (*truth, *outside) else {
+                    continue;
+                };
+                let Some(lit) = judged(first + k) else {
+                    continue;
+                };
+                count.visible += 1;
+                match (lit, truly_lit) {
+                    (true, false) => count.falsely_lit += 1,
+                    (false, true) => count.falsely_shadowed += 1,
+                    _ => {}
+                }
+            }
+            count
+        })
+        .reduce(Misclassification::default, |mut total, part| {
+            total += part;
+            total
+        })
 }
 
 /// The misclassified pairs of a technique whose lit fractions are `lit` (per light, per pixel, as

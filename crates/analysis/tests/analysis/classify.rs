@@ -12,7 +12,7 @@ use shadowlab_raster::{DepthFormat, EyeImage, NO_TRIANGLE, Triangles};
 use shadowlab_scene::Scene;
 use shadowlab_shadow::{Bias, Filter, LightSetup, Lookup, MapOptions, ShadowMap, eye_pass};
 
-use crate::support::{box_over_ground, camera, orthographic, scene, sun};
+use crate::support::{box_over_ground, camera, on_threads, orthographic, scene, sun};
 
 /// Texels per side of the aligned map: over the 16-unit window, a texel is 1/4 unit, so the box's
 /// edges at ±2 fall on texel edges 24 and 40.
@@ -217,5 +217,66 @@ fn the_difference_image_uses_the_documented_colours() {
     ];
     for (k, a) in colours.iter().enumerate() {
         assert!(colours[k + 1..].iter().all(|b| a != b), "distinct colours");
+    }
+}
+
+/// Claim: the counts are the direct tally of every judged pair, on 1 and 3 threads, for two lights
+/// over more pixels than one work item takes (and a partial last one): pixels seeing nothing,
+/// pixels outside a light's cone, and all four agreements of truth and lookup.
+#[test]
+fn counts_are_the_direct_tally_on_any_thread_count() {
+    // SplitMix64, seed 16.
+    let mut state = 16_u64;
+    let mut next = move || {
+        state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = state;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    };
+    let pixels = 3 * (1 << 14) + 1234;
+    let mut truth = Truth {
+        lit: Vec::new(),
+        outside_cone: Vec::new(),
+    };
+    let mut lit = Vec::new();
+    for _ in 0..2 {
+        truth.lit.push(
+            (0..pixels)
+                .map(|_| match next() % 5 {
+                    0 => None,
+                    r => Some(r % 2 == 0),
+                })
+                .collect(),
+        );
+        truth
+            .outside_cone
+            .push((0..pixels).map(|_| next() % 7 == 0).collect());
+        lit.push(
+            (0..pixels)
+                .map(|_| (next() % 3) as f64 / 2.0)
+                .collect::<Vec<f64>>(),
+        );
+    }
+    let mut tally = Misclassification::default();
+    for (light, fractions) in lit.iter().enumerate() {
+        for (pixel, fraction) in fractions.iter().enumerate() {
+            let (Some(truly_lit), false) =
+                (truth.lit[light][pixel], truth.outside_cone[light][pixel])
+            else {
+                continue;
+            };
+            let judged_lit = *fraction >= shadowlab_analysis::truth::LIT_THRESHOLD;
+            tally.visible += 1;
+            tally.falsely_lit += u64::from(judged_lit && !truly_lit);
+            tally.falsely_shadowed += u64::from(!judged_lit && truly_lit);
+        }
+    }
+    assert!(tally.falsely_lit > 0 && tally.falsely_shadowed > 0);
+    for threads in [1, 3] {
+        assert_eq!(
+            on_threads(threads, || misclassification(&truth, &lit)),
+            tally
+        );
     }
 }
