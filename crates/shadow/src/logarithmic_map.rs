@@ -71,7 +71,9 @@ impl LogarithmicMap {
     /// `Ẋ = 2·(q̇_x·w − q_x·ẇ)/(w²·(r − l))`,  `Ẏ = 2·τ̇·κ/(w·ln(1 + κ))`,
     ///
     /// the last with `κ/ln(1 + κ)` taken as 1 at κ = 0 (the uniform limit). `None` where `ndc` is
-    /// `None`.
+    /// `None`. Inlined, so that a caller's derivatives at one point along several directions share
+    /// the point's `h`, `q`, `τ` and `w` (docs/benchmarks.md).
+    #[inline(always)]
     #[must_use]
     pub fn ndc_derivative(&self, world: DVec3, direction: DVec3) -> Option<DVec2> {
         let h = self.world_to_light * world.extend(1.0);
