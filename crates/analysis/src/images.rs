@@ -260,6 +260,10 @@ pub fn difference_legend(counts: &ClassCounts) -> Vec<Swatch> {
         .collect()
 }
 
+/// Pixels per parallel work item of [`CauseCounts::of`]. Any size gives the same counts: they are
+/// integers.
+const COUNT_CHUNK: usize = 1 << 14;
+
 /// How many pixels of a causes picture ([`crate::attribution::cause_image`]) have each of its
 /// colours.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -275,23 +279,36 @@ pub struct CauseCounts {
 }
 
 impl CauseCounts {
-    /// Counts the classes of `causes`; a pixel of any other colour counts nowhere.
+    /// Counts the classes of `causes`; a pixel of any other colour counts nowhere. In parallel
+    /// over chunks of `COUNT_CHUNK` pixels, whose integer counts are summed: the same on any
+    /// thread count.
     #[must_use]
     pub fn of(causes: &[[u8; 3]]) -> Self {
-        let mut counts = Self::default();
-        for &pixel in causes {
-            if let Some(cause) = Cause::ALL.into_iter().find(|c| c.colour() == pixel) {
-                counts.first.count(cause);
-                continue;
-            }
-            match pixel {
-                CORRECT_LIT => counts.correct_lit += 1,
-                CORRECT_SHADOW => counts.correct_shadow += 1,
-                BACKGROUND => counts.background += 1,
-                _ => {}
-            }
-        }
-        counts
+        causes
+            .par_chunks(COUNT_CHUNK)
+            .map(|chunk| {
+                let mut counts = Self::default();
+                for &pixel in chunk {
+                    if let Some(cause) = Cause::ALL.into_iter().find(|c| c.colour() == pixel) {
+                        counts.first.count(cause);
+                        continue;
+                    }
+                    match pixel {
+                        CORRECT_LIT => counts.correct_lit += 1,
+                        CORRECT_SHADOW => counts.correct_shadow += 1,
+                        BACKGROUND => counts.background += 1,
+                        _ => {}
+                    }
+                }
+                counts
+            })
+            .reduce(Self::default, |mut total, part| {
+                total.first += part.first;
+                total.correct_lit += part.correct_lit;
+                total.correct_shadow += part.correct_shadow;
+                total.background += part.background;
+                total
+            })
     }
 
     /// The classes in the legend's order — the causes in precedence order, then correct lit,

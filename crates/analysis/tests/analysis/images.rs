@@ -6,8 +6,8 @@ use shadowlab_analysis::classify::{
     BACKGROUND, CORRECT_LIT, CORRECT_SHADOW, FALSELY_LIT, FALSELY_SHADOWED,
 };
 use shadowlab_analysis::images::{
-    ClassCounts, HeatScale, NO_VALUE, VIRIDIS, colour, difference_legend, footprint_colour_bar,
-    heatmap, value_range,
+    CauseCounts, ClassCounts, HeatScale, NO_VALUE, VIRIDIS, colour, difference_legend,
+    footprint_colour_bar, heatmap, value_range,
 };
 
 /// Relative luminance of an sRGB colour (ITU-R BT.709 weights on linearised channels).
@@ -175,4 +175,35 @@ fn the_causes_colours_are_their_own() {
             assert_ne!(*colour, taken, "{:?}", Cause::ALL[k]);
         }
     }
+}
+
+/// Claim: the causes picture's counts are the direct tally of its colours, on 1 and 3 threads,
+/// over more pixels than one work item takes (and a partial last one); a colour of no class
+/// counts nowhere.
+#[test]
+fn the_causes_are_counted_on_any_thread_count() {
+    use shadowlab_analysis::attribution::Cause;
+    let palette: Vec<[u8; 3]> = Cause::ALL
+        .iter()
+        .map(|c| c.colour())
+        .chain([CORRECT_LIT, CORRECT_SHADOW, BACKGROUND, [1, 2, 3]])
+        .collect();
+    // Pixel k takes the colour its Fibonacci hash picks: every class, unevenly.
+    let pixels: Vec<[u8; 3]> = (0..3 * (1_u64 << 14) + 777)
+        .map(|k| {
+            let pick = (k.wrapping_mul(0x9E37_79B9_7F4A_7C15) >> 40) % palette.len() as u64;
+            palette[usize::try_from(pick).unwrap()]
+        })
+        .collect();
+    let tally = |colour: [u8; 3]| pixels.iter().filter(|p| **p == colour).count() as u64;
+    for threads in [1, 3] {
+        let counts = crate::support::on_threads(threads, || CauseCounts::of(&pixels));
+        for cause in Cause::ALL {
+            assert_eq!(counts.first.of(cause), tally(cause.colour()), "{cause:?}");
+        }
+        assert_eq!(counts.correct_lit, tally(CORRECT_LIT));
+        assert_eq!(counts.correct_shadow, tally(CORRECT_SHADOW));
+        assert_eq!(counts.background, tally(BACKGROUND));
+    }
+    assert!(palette.iter().all(|&colour| tally(colour) > 0));
 }
