@@ -363,12 +363,15 @@ pub fn attribute(
                 .map(|(_, map)| map.setup.mapping.clip_from_world().map(|m| m.inverse()))
                 .collect(),
         };
-        let mut causes = vec![None; pixels];
-        causes
+        // Filled by the workers, not `vec!` (docs/CONVENTIONS.md, "Large buffers"); each chunk
+        // counts its own causes, and the integer counts are summed.
+        let mut causes: Vec<Option<Cause>> = rayon::iter::repeat_n(None, pixels).collect();
+        counts += causes
             .par_chunks_mut(width * ATTRIBUTION_ROWS)
             .enumerate()
-            .for_each(|(chunk, out)| {
+            .map(|(chunk, out)| {
                 let first = chunk * width * ATTRIBUTION_ROWS;
+                let mut tally = Causes::default();
                 for (k, cause) in out.iter_mut().enumerate() {
                     let pixel = first + k;
                     let (Some(truly_lit), false) = (truth_lit[pixel], outside[pixel]) else {
@@ -379,13 +382,17 @@ pub fn attribute(
                     }
                     let classified_lit = fractions[pixel] >= LIT_THRESHOLD;
                     if classified_lit != truly_lit {
-                        *cause = Some(cause_of(&context, &maps, pixel, classified_lit));
+                        let found = cause_of(&context, &maps, pixel, classified_lit);
+                        tally.count(found);
+                        *cause = Some(found);
                     }
                 }
+                tally
+            })
+            .reduce(Causes::default, |mut total, part| {
+                total += part;
+                total
             });
-        for &cause in causes.iter().flatten() {
-            counts.count(cause);
-        }
         per_pixel.push(causes);
     }
     Ok(Attribution { per_pixel, counts })
