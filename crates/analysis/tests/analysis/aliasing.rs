@@ -18,7 +18,7 @@ use shadowlab_shadow::{
     measure, plan,
 };
 
-use crate::support::{camera, config, on_threads, orthographic, relative, scene, sun};
+use crate::support::{camera, config, on_threads, orthographic, relative, scene, split_mix64, sun};
 
 /// Agreement asked of the footprint and the closed forms.
 const AGREEMENT: f64 = 1e-6;
@@ -388,15 +388,7 @@ fn sorted_p99_and_max(values: &[f64]) -> (f64, f64) {
 /// subnormals and infinities; the maximum too.
 #[test]
 fn the_selected_percentile_is_the_sorted_one() {
-    // SplitMix64, seed 15.
-    let mut state = 15_u64;
-    let mut next = move || {
-        state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = state;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    };
+    let mut next = split_mix64(15);
     let mut sets: Vec<Vec<f64>> = Vec::new();
     for n in [1, 99, 100, 101, 4096, 4097, 16_385, 70_001] {
         // Spread: any finite double of either sign, by its bits.

@@ -12,7 +12,7 @@ use shadowlab_raster::{DepthFormat, EyeImage, NO_TRIANGLE, Triangles};
 use shadowlab_scene::Scene;
 use shadowlab_shadow::{Bias, Filter, LightSetup, Lookup, MapOptions, ShadowMap, eye_pass};
 
-use crate::support::{box_over_ground, camera, on_threads, orthographic, scene, sun};
+use crate::support::{box_over_ground, camera, on_threads, orthographic, scene, split_mix64, sun};
 
 /// Texels per side of the aligned map: over the 16-unit window, a texel is 1/4 unit, so the box's
 /// edges at ±2 fall on texel edges 24 and 40.
@@ -225,15 +225,7 @@ fn the_difference_image_uses_the_documented_colours() {
 /// pixels outside a light's cone, and all four agreements of truth and lookup.
 #[test]
 fn counts_are_the_direct_tally_on_any_thread_count() {
-    // SplitMix64, seed 16.
-    let mut state = 16_u64;
-    let mut next = move || {
-        state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = state;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    };
+    let mut next = split_mix64(16);
     let pixels = 3 * (1 << 14) + 1234;
     let mut truth = Truth {
         lit: Vec::new(),
@@ -251,7 +243,7 @@ fn counts_are_the_direct_tally_on_any_thread_count() {
         );
         truth
             .outside_cone
-            .push((0..pixels).map(|_| next() % 7 == 0).collect());
+            .push((0..pixels).map(|_| next().is_multiple_of(7)).collect());
         lit.push(
             (0..pixels)
                 .map(|_| (next() % 3) as f64 / 2.0)

@@ -143,3 +143,15 @@ pub(crate) fn orthographic(light: &ViewPose, half: f64, shift: f64) -> LightSetu
         focus_body: Vec::new(),
     }
 }
+
+/// SplitMix64 (Steele, Lea & Flood 2014) from `seed`: the tests' deterministic numbers.
+pub(crate) fn split_mix64(seed: u64) -> impl FnMut() -> u64 {
+    let mut state = seed;
+    move || {
+        state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = state;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+}
