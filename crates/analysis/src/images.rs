@@ -19,6 +19,8 @@
 //! `2/3`, the control point `#35B779` (green). Pixels without a value (nothing visible, or the
 //! value undefined or NaN) are [`NO_VALUE`].
 
+use std::ops::AddAssign;
+
 use rayon::prelude::*;
 use shadowlab_plot::{Color, ColourBar, Scale, Swatch};
 
@@ -303,10 +305,7 @@ impl CauseCounts {
                 counts
             })
             .reduce(Self::default, |mut total, part| {
-                total.first += part.first;
-                total.correct_lit += part.correct_lit;
-                total.correct_shadow += part.correct_shadow;
-                total.background += part.background;
+                total += part;
                 total
             })
     }
@@ -340,6 +339,15 @@ impl CauseCounts {
                 ),
             ])
             .collect()
+    }
+}
+
+impl AddAssign for CauseCounts {
+    fn add_assign(&mut self, other: Self) {
+        self.first += other.first;
+        self.correct_lit += other.correct_lit;
+        self.correct_shadow += other.correct_shadow;
+        self.background += other.background;
     }
 }
 
