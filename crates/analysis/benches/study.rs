@@ -11,7 +11,8 @@
 //! 2000². Everything is deterministic.
 //!
 //! And the measurement's own phases for that combination, which every combination of a study
-//! pays once: the per-pixel texel footprints (`study::frame_footprints`), and their statistics
+//! pays once: the per-pixel texel footprints (`study::frame_footprints`; also through the
+//! logarithmic map at 2000², whose derivative is its own closed form), and their statistics
 //! (`aliasing::stats_of` of the total, perspective and projection parts, as `study::outcome`
 //! takes them).
 //!
@@ -86,7 +87,8 @@ fn whole_study(c: &mut Criterion) {
     group.finish();
 }
 
-/// The footprints of lispsm at 2000² on `scene`'s eye pass, and their three statistics.
+/// The footprints of lispsm at 2000² on `scene`'s eye pass, and their three statistics; and the
+/// footprints of the logarithmic map, differentiated in closed form, at the same size.
 fn footprint_phases(
     group: &mut BenchmarkGroup<'_, WallTime>,
     scene: &Scene,
@@ -94,13 +96,19 @@ fn footprint_phases(
 ) {
     let eye = EyePass::new(scene).expect("the eye pass");
     let bvh = scene_bvh(scene).expect("the hierarchy");
-    let setting = Setting {
-        technique: Technique::Lispsm(WarpChoice::PAPER),
+    let setting = |technique| Setting {
+        technique,
         resolution: 2000,
         partitions: 1,
         filter: Filter::Nearest,
     };
-    let shadows = study::render(scene, options, &setting, &eye, &bvh).expect("render");
+    let logarithmic = Technique::parse("logarithmic", None).expect("a known key");
+    let shadows = study::render(scene, options, &setting(logarithmic), &eye, &bvh).expect("render");
+    group.bench_function("outdoor/footprints-logarithmic", |b| {
+        b.iter(|| study::frame_footprints(scene, &eye.image, black_box(&shadows)));
+    });
+    let lispsm = setting(Technique::Lispsm(WarpChoice::PAPER));
+    let shadows = study::render(scene, options, &lispsm, &eye, &bvh).expect("render");
     group.bench_function("outdoor/footprints", |b| {
         b.iter(|| study::frame_footprints(scene, &eye.image, black_box(&shadows)));
     });
