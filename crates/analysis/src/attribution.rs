@@ -86,6 +86,7 @@ use shadowlab_trace::{Bvh, Ray};
 
 use crate::classify::{BACKGROUND, CORRECT_LIT, CORRECT_SHADOW};
 use crate::error::AnalysisError;
+use crate::tally;
 use crate::truth::{LIT_THRESHOLD, Truth};
 
 /// Rows of pixels attributed per parallel job; any size gives the same result.
@@ -364,35 +365,33 @@ pub fn attribute(
                 .collect(),
         };
         // Filled by the workers, not `vec!` (docs/CONVENTIONS.md, "Large buffers"); each chunk
-        // counts its own causes, and the integer counts are summed.
+        // counts its own causes, and the counts are summed (`tally`).
         let mut causes: Vec<Option<Cause>> = rayon::iter::repeat_n(None, pixels).collect();
-        counts += causes
-            .par_chunks_mut(width * ATTRIBUTION_ROWS)
-            .enumerate()
-            .map(|(chunk, out)| {
-                let first = chunk * width * ATTRIBUTION_ROWS;
-                let mut tally = Causes::default();
-                for (k, cause) in out.iter_mut().enumerate() {
-                    let pixel = first + k;
-                    let (Some(truly_lit), false) = (truth_lit[pixel], outside[pixel]) else {
-                        continue;
-                    };
-                    if eye.triangle[pixel] == NO_TRIANGLE {
-                        continue;
+        counts += tally::total(
+            causes
+                .par_chunks_mut(width * ATTRIBUTION_ROWS)
+                .enumerate()
+                .map(|(chunk, out)| {
+                    let first = chunk * width * ATTRIBUTION_ROWS;
+                    let mut chunk_counts = Causes::default();
+                    for (k, cause) in out.iter_mut().enumerate() {
+                        let pixel = first + k;
+                        let (Some(truly_lit), false) = (truth_lit[pixel], outside[pixel]) else {
+                            continue;
+                        };
+                        if eye.triangle[pixel] == NO_TRIANGLE {
+                            continue;
+                        }
+                        let classified_lit = fractions[pixel] >= LIT_THRESHOLD;
+                        if classified_lit != truly_lit {
+                            let found = cause_of(&context, &maps, pixel, classified_lit);
+                            chunk_counts.count(found);
+                            *cause = Some(found);
+                        }
                     }
-                    let classified_lit = fractions[pixel] >= LIT_THRESHOLD;
-                    if classified_lit != truly_lit {
-                        let found = cause_of(&context, &maps, pixel, classified_lit);
-                        tally.count(found);
-                        *cause = Some(found);
-                    }
-                }
-                tally
-            })
-            .reduce(Causes::default, |mut total, part| {
-                total += part;
-                total
-            });
+                    chunk_counts
+                }),
+        );
         per_pixel.push(causes);
     }
     Ok(Attribution { per_pixel, counts })

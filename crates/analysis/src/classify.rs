@@ -15,6 +15,7 @@ use std::ops::AddAssign;
 use rayon::prelude::*;
 use shadowlab_raster::{EyeImage, NO_TRIANGLE};
 
+use crate::tally::{self, TALLY_CHUNK};
 use crate::truth::{LIT_THRESHOLD, Truth};
 
 /// How many judged (light, pixel) pairs a technique got wrong, and how.
@@ -58,44 +59,39 @@ impl AddAssign for Misclassification {
     }
 }
 
-/// Pixels per parallel work item of [`compare`]. Any size gives the same counts: they are integers.
-const COMPARE_CHUNK: usize = 1 << 14;
-
 /// Counts one light's pairs: `truth` and `outside_cone` per pixel, `judged(pixel)` the compared
-/// classification (`None`: not judged there); in parallel over chunks of `COMPARE_CHUNK` pixels,
-/// whose integer counts are summed.
+/// classification (`None`: not judged there); in parallel over chunks of pixels whose counts are
+/// summed (`tally`).
 pub(crate) fn compare(
     truth: &[Option<bool>],
     outside_cone: &[bool],
     judged: impl Fn(usize) -> Option<bool> + Sync,
 ) -> Misclassification {
-    truth
-        .par_chunks(COMPARE_CHUNK)
-        .zip(outside_cone.par_chunks(COMPARE_CHUNK))
-        .enumerate()
-        .map(|(chunk, (truth, outside_cone))| {
-            let first = chunk * COMPARE_CHUNK;
-            let mut count = Misclassification::default();
-            for (k, (truth, outside)) in truth.iter().zip(outside_cone).enumerate() {
-                let (Some(truly_lit), false) = (*truth, *outside) else {
-                    continue;
-                };
-                let Some(lit) = judged(first + k) else {
-                    continue;
-                };
-                count.visible += 1;
-                match (lit, truly_lit) {
-                    (true, false) => count.falsely_lit += 1,
-                    (false, true) => count.falsely_shadowed += 1,
-                    _ => {}
+    tally::total(
+        truth
+            .par_chunks(TALLY_CHUNK)
+            .zip(outside_cone.par_chunks(TALLY_CHUNK))
+            .enumerate()
+            .map(|(chunk, (truth, outside_cone))| {
+                let first = chunk * TALLY_CHUNK;
+                let mut count = Misclassification::default();
+                for (k, (truth, outside)) in truth.iter().zip(outside_cone).enumerate() {
+                    let (Some(truly_lit), false) = (*truth, *outside) else {
+                        continue;
+                    };
+                    let Some(lit) = judged(first + k) else {
+                        continue;
+                    };
+                    count.visible += 1;
+                    match (lit, truly_lit) {
+                        (true, false) => count.falsely_lit += 1,
+                        (false, true) => count.falsely_shadowed += 1,
+                        _ => {}
+                    }
                 }
-            }
-            count
-        })
-        .reduce(Misclassification::default, |mut total, part| {
-            total += part;
-            total
-        })
+                count
+            }),
+    )
 }
 
 /// The misclassified pairs of a technique whose lit fractions are `lit` (per light, per pixel, as

@@ -27,6 +27,7 @@ use shadowlab_plot::{Color, ColourBar, Scale, Swatch};
 use crate::attribution::{Cause, Causes};
 use crate::classify::{BACKGROUND, CORRECT_LIT, CORRECT_SHADOW, FALSELY_LIT, FALSELY_SHADOWED};
 use crate::error::AnalysisError;
+use crate::tally::{self, TALLY_CHUNK};
 
 /// viridis at `k/9`, `k = 0, …, 9` (see the module docs for the source): the colour map's control
 /// points, which a colour bar's gradient runs through.
@@ -262,10 +263,6 @@ pub fn difference_legend(counts: &ClassCounts) -> Vec<Swatch> {
         .collect()
 }
 
-/// Pixels per parallel work item of [`CauseCounts::of`]. Any size gives the same counts: they are
-/// integers.
-const COUNT_CHUNK: usize = 1 << 14;
-
 /// How many pixels of a causes picture ([`crate::attribution::cause_image`]) have each of its
 /// colours.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -282,32 +279,25 @@ pub struct CauseCounts {
 
 impl CauseCounts {
     /// Counts the classes of `causes`; a pixel of any other colour counts nowhere. In parallel
-    /// over chunks of `COUNT_CHUNK` pixels, whose integer counts are summed: the same on any
-    /// thread count.
+    /// over chunks of pixels whose counts are summed (`tally`): the same on any thread count.
     #[must_use]
     pub fn of(causes: &[[u8; 3]]) -> Self {
-        causes
-            .par_chunks(COUNT_CHUNK)
-            .map(|chunk| {
-                let mut counts = Self::default();
-                for &pixel in chunk {
-                    if let Some(cause) = Cause::ALL.into_iter().find(|c| c.colour() == pixel) {
-                        counts.first.count(cause);
-                        continue;
-                    }
-                    match pixel {
-                        CORRECT_LIT => counts.correct_lit += 1,
-                        CORRECT_SHADOW => counts.correct_shadow += 1,
-                        BACKGROUND => counts.background += 1,
-                        _ => {}
-                    }
+        tally::total(causes.par_chunks(TALLY_CHUNK).map(|chunk| {
+            let mut counts = Self::default();
+            for &pixel in chunk {
+                if let Some(cause) = Cause::ALL.into_iter().find(|c| c.colour() == pixel) {
+                    counts.first.count(cause);
+                    continue;
                 }
-                counts
-            })
-            .reduce(Self::default, |mut total, part| {
-                total += part;
-                total
-            })
+                match pixel {
+                    CORRECT_LIT => counts.correct_lit += 1,
+                    CORRECT_SHADOW => counts.correct_shadow += 1,
+                    BACKGROUND => counts.background += 1,
+                    _ => {}
+                }
+            }
+            counts
+        }))
     }
 
     /// The classes in the legend's order — the causes in precedence order, then correct lit,

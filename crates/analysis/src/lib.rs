@@ -63,6 +63,7 @@ pub mod report;
 pub mod setup_file;
 pub mod study;
 pub mod sweep;
+mod tally;
 pub mod temporal;
 pub mod truth;
 pub mod view_axis;
