@@ -10,8 +10,9 @@
 //! the scene's triangles; the dual-paraboloid map, two hemispheres cast one ray per texel), at
 //! 2000². Everything is deterministic.
 //!
-//! And the measurement's own phases for that combination, which every combination of a study
-//! pays once: the per-pixel texel footprints (`study::frame_footprints`; also through the
+//! And the logarithmic map's shadow pass at 2000² (`study::render`: planning, and 4 M texel rays
+//! cast as a grid). And the measurement's own phases for that combination, which every
+//! combination of a study pays once: the per-pixel texel footprints (`study::frame_footprints`; also through the
 //! logarithmic map at 2000², whose derivative is its own closed form), and their statistics
 //! (`aliasing::stats_of` of the total, perspective and projection parts, as `study::outcome`
 //! takes them).
@@ -87,8 +88,9 @@ fn whole_study(c: &mut Criterion) {
     group.finish();
 }
 
-/// The footprints of lispsm at 2000² on `scene`'s eye pass, and their three statistics; and the
-/// footprints of the logarithmic map, differentiated in closed form, at the same size.
+/// The footprints of lispsm at 2000² on `scene`'s eye pass, and their three statistics; the
+/// logarithmic map at the same size — its shadow pass (one ray per texel, swept) and its
+/// footprints, differentiated in closed form.
 fn footprint_phases(
     group: &mut BenchmarkGroup<'_, WallTime>,
     scene: &Scene,
@@ -102,8 +104,13 @@ fn footprint_phases(
         partitions: 1,
         filter: Filter::Nearest,
     };
-    let logarithmic = Technique::parse("logarithmic", None).expect("a known key");
-    let shadows = study::render(scene, options, &setting(logarithmic), &eye, &bvh).expect("render");
+    let logarithmic = setting(Technique::parse("logarithmic", None).expect("a known key"));
+    group.bench_function("outdoor/logarithmic-2000", |b| {
+        b.iter(|| {
+            study::render(scene, options, black_box(&logarithmic), &eye, &bvh).expect("render")
+        });
+    });
+    let shadows = study::render(scene, options, &logarithmic, &eye, &bvh).expect("render");
     group.bench_function("outdoor/footprints-logarithmic", |b| {
         b.iter(|| study::frame_footprints(scene, &eye.image, black_box(&shadows)));
     });

@@ -88,9 +88,11 @@ impl ShadowMap {
     /// ([`crate::logarithmic::LogarithmicMap::texel_row`], [`crate::paraboloid::ParaboloidMap::texel_ray`]), cast
     /// against `bvh`; the first hit's depth (and the second's, if asked for) through the forward
     /// mapping, stored in `options.format`. A texel with no ray (outside a paraboloid's disk) or
-    /// whose ray meets nothing stores 1. Rows are cast in parallel, each row's rays in batches of
-    /// at most [`RAY_CHUNK`] ([`Bvh::closest_hits`], which traces neighbouring texels' rays
-    /// together); each texel's value depends on its ray alone.
+    /// whose ray meets nothing stores 1. The logarithmic map's nearest depths are cast as one grid
+    /// ([`Bvh::closest_hits_grid`]: swept triangle by triangle where its rays are parallel, under
+    /// a directional light); otherwise rows are cast in parallel, each row's rays in batches of at
+    /// most [`RAY_CHUNK`] ([`Bvh::closest_hits`], which traces neighbouring texels' rays
+    /// together). Either way each texel's value is its ray's brute-force first hit alone.
     ///
     /// # Errors
     /// [`ShadowError::NotDefined`] for a projective set-up (rasterize it with [`Self::render`]);
@@ -184,6 +186,29 @@ impl ShadowMap {
         // fills its own.
         let zeros = |n: usize| -> Vec<f64> { rayon::iter::repeat_n(0.0, n).collect() };
         let mut nearest = zeros(side * side);
+        // The logarithmic map's first hits, as a grid of rays: swept, where they are parallel.
+        if let (ShadowMapping::Logarithmic(map), false) = (mapping, options.second_depth) {
+            let row = |j: usize, rays: &mut [Ray]| {
+                let row = map.texel_row(centre(j));
+                for (i, ray) in rays.iter_mut().enumerate() {
+                    let (from, to) = row.ray(centre(i));
+                    *ray = Ray {
+                        origin: from,
+                        direction: to - from,
+                    };
+                }
+            };
+            bvh.closest_hits_grid(side, row, 0.0, 1.0, &mut nearest, |ray, hit| {
+                hit.map_or(1.0, |hit| store(ray, hit.t))
+            })?;
+            return Ok(Self {
+                setup: setup.clone(),
+                resolution: options.resolution,
+                format: options.format,
+                nearest,
+                second: None,
+            });
+        }
         let mut second = zeros(if options.second_depth { side * side } else { 0 });
         let rows = nearest.par_chunks_mut(side).enumerate();
         if options.second_depth {

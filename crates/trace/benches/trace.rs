@@ -1,6 +1,7 @@
 //! Criterion benchmarks of the BVH: build time, and rays per second for closest-hit and any-hit
 //! queries with coherent and random rays: the batch queries on 1 and 2 threads, and one ray at a
-//! time (`closest_hit`, `occluded` in a loop) on 1 thread.
+//! time (`closest_hit`, `occluded` in a loop) on 1 thread; and the grids swept
+//! (`closest-grid`: [`Bvh::closest_hits_grid`]) on 1 and 2 threads.
 //!
 //! Meshes: the Stanford bunny (`data/meshes/bunny.obj`, 69 666 triangles) and, when present, the
 //! dragon (`data/meshes/dragon.obj`, 871 414 triangles; made by `data/meshes/fetch-dragon.sh`,
@@ -195,10 +196,10 @@ fn queries(c: &mut Criterion) {
         let bvh = Bvh::new(&mesh.positions, &mesh.triangles).expect("valid mesh");
         let (lo, hi) = bvh.bounds().expect("triangles");
         eprintln!("{name}: {:?}", bvh.stats());
-        for (kind, rays) in [
-            ("coherent", grid_rays(lo, hi, GRID)),
-            ("grid2048", grid_rays(lo, hi, MAP_GRID)),
-            ("random", random_rays(lo, hi)),
+        for (kind, rays, row_len) in [
+            ("coherent", grid_rays(lo, hi, GRID), Some(GRID)),
+            ("grid2048", grid_rays(lo, hi, MAP_GRID), Some(MAP_GRID)),
+            ("random", random_rays(lo, hi), None),
         ] {
             let hits = bvh
                 .closest_hits(&rays, 0.0, f64::INFINITY)
@@ -228,6 +229,29 @@ fn queries(c: &mut Criterion) {
                         pool.install(|| bvh.occluded_all(black_box(&rays), 0.0, f64::INFINITY))
                     });
                 });
+                // The grids by the sweep (`Bvh::closest_hits_grid`), answers into a reused buffer.
+                if let Some(row_len) = row_len {
+                    let mut out = vec![None; rays.len()];
+                    group.bench_function(id("closest-grid", threads), |b| {
+                        b.iter(|| {
+                            pool.install(|| {
+                                bvh.closest_hits_grid(
+                                    row_len,
+                                    |j, row| {
+                                        row.copy_from_slice(
+                                            &black_box(&rays)[j * row_len..(j + 1) * row_len],
+                                        );
+                                    },
+                                    0.0,
+                                    f64::INFINITY,
+                                    &mut out,
+                                    |_, hit| hit,
+                                )
+                                .expect("valid rays");
+                            });
+                        });
+                    });
+                }
             }
             group.bench_function(id("closest-single", 1), |b| {
                 b.iter(|| {

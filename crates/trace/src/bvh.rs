@@ -44,7 +44,10 @@
 //! With ties broken by triangle index, the result is a function of the ray and the mesh alone:
 //! the same as a loop over all triangles ([`Bvh::intersect_triangle`]), whatever the tree.
 
+mod grid;
 mod packet;
+
+pub use grid::GRID_CHUNK;
 
 use std::fmt;
 
@@ -435,9 +438,8 @@ impl Bvh {
         )
     }
 
-    /// Casts `rays` in parallel work items of [`RAY_CHUNK`] rays, each in packets of [`PACKET`]
-    /// consecutive rays where they form one (`packet`), one by one otherwise (`single`); each
-    /// answer is written in its ray's place.
+    /// Casts `rays` in parallel work items of [`RAY_CHUNK`] rays (`item`); each answer is written
+    /// in its ray's place.
     fn batch<T: Clone + Default + Send>(
         &self,
         rays: &[Ray],
@@ -461,20 +463,47 @@ impl Bvh {
                         })
                     })
                     .collect();
-                let mut stack = new_stack();
-                let mut packet_stack = PacketStack::new();
-                let mut set_up = Packet::default();
-                for (out, rays) in out.chunks_mut(PACKET).zip(prepared.chunks(PACKET)) {
-                    if set_up.set(rays) {
-                        packet(rays, &set_up, &mut packet_stack, out);
-                    } else {
-                        for (out, ray) in out.iter_mut().zip(rays) {
-                            *out = single(ray, &mut stack);
-                        }
-                    }
-                }
+                Self::item(&prepared, &single, &packet, out);
             });
         out
+    }
+
+    /// One work item's rays, set up: in packets of [`PACKET`] consecutive rays where they form
+    /// one (`packet`), one by one otherwise (`single`).
+    fn item<T>(
+        prepared: &[PreparedRay],
+        single: impl Fn(&PreparedRay, &mut Stack) -> T,
+        packet: impl Fn(&[PreparedRay], &Packet, &mut PacketStack, &mut [T]),
+        out: &mut [T],
+    ) {
+        let mut stack = new_stack();
+        let mut packet_stack = PacketStack::new();
+        let mut set_up = Packet::default();
+        for (out, rays) in out.chunks_mut(PACKET).zip(prepared.chunks(PACKET)) {
+            if set_up.set(rays) {
+                packet(rays, &set_up, &mut packet_stack, out);
+            } else {
+                for (out, ray) in out.iter_mut().zip(rays) {
+                    *out = single(ray, &mut stack);
+                }
+            }
+        }
+    }
+
+    /// [`Bvh::closest_hits`] of one work item's rays, set up, into `out`.
+    fn closest_item(
+        &self,
+        prepared: &[PreparedRay],
+        t_min: f64,
+        t_max: f64,
+        out: &mut [Option<Hit>],
+    ) {
+        Self::item(
+            prepared,
+            |ray, stack| self.closest_prepared(ray, t_min, t_max, stack),
+            |rays, packet, stack, out| self.closest_packet(rays, packet, t_min, t_max, stack, out),
+            out,
+        );
     }
 
     fn closest_prepared(

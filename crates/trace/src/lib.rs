@@ -17,7 +17,10 @@
 //! * **Queries**: [`Bvh::closest_hit`], [`Bvh::occluded`], and their parallel batch forms
 //!   [`Bvh::closest_hits`] and [`Bvh::occluded_all`] (rayon), which trace runs of coherent rays
 //!   in packets (Wald, Boulos & Shirley 2007: one box test per packet by interval arithmetic,
-//!   bounding each ray's own rounded test), each ray with its own answer.
+//!   bounding each ray's own rounded test), each ray with its own answer; and
+//!   [`Bvh::closest_hits_grid`] for a grid of parallel rays (a directional light's shadow-map
+//!   texels), swept triangle by triangle over the grid's rows, each ray tested only against the
+//!   triangles whose image reaches it, with the same answers.
 //! * **[`offset_origin`]**: moves a surface point off its triangle's plane by an amount proven to
 //!   exceed its rounding error (after Wächter & Binder, Ray Tracing Gems ch. 6), for rays leaving
 //!   the surface.
@@ -79,7 +82,7 @@ mod offset;
 mod ray;
 mod triangle;
 
-pub use bvh::{Bvh, BvhStats, RAY_CHUNK};
+pub use bvh::{Bvh, BvhStats, GRID_CHUNK, RAY_CHUNK};
 pub use error::TraceError;
 pub use offset::{MIN_MAGNITUDE, OFFSET_ULPS, SURFACE_POINT_ULPS, offset_origin};
 pub use ray::{BOX_PADDING_ULPS, Hit, MAX_COORDINATE, MIN_DIRECTION, Ray};

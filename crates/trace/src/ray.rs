@@ -145,6 +145,12 @@ impl PreparedRay {
     #[inline(always)]
     pub(crate) fn new(ray: &Ray, magnitude: f64) -> Result<Self, TraceError> {
         ray.validate()?;
+        Ok(Self::set_up(ray, magnitude))
+    }
+
+    /// [`Self::new`] for a ray already validated ([`Ray::validate`]).
+    #[inline(always)]
+    pub(crate) fn set_up(ray: &Ray, magnitude: f64) -> Self {
         let o = ray.origin.to_array();
         let d = ray.direction.to_array();
         let abs = ray.direction.abs();
@@ -176,7 +182,7 @@ impl PreparedRay {
                 (up, down)
             };
         }
-        Ok(Self {
+        Self {
             origin: o,
             kz,
             shear,
@@ -184,7 +190,7 @@ impl PreparedRay {
             negative,
             near_origin,
             far_origin,
-        })
+        }
     }
 
     /// The parameter interval `[near, far]` in which the ray lies in the padded box `lo..hi`,

@@ -13,6 +13,9 @@
 //! * `packets` — batches of coherent rays, which the batch queries trace in packets, give the
 //!   single-ray and brute-force answers: at vertices, edge midpoints, along and beside shared
 //!   edges, through zero-area triangles, and a dense grid of parallel rays;
+//! * `grid` — grids of parallel rays answered by the sweep ([`shadowlab_trace::Bvh::closest_hits_grid`])
+//!   give brute force's answers: random meshes, rays through vertices and along edges, and grids
+//!   the sweep does not take;
 //! * `determinism` — the same tree and the same bits for 1, 2 and 8 threads;
 //! * `offset` — offset origins lie strictly on the intended side (exact `orient3d`), at
 //!   magnitudes 10⁻³ to 10⁶, and rays from them miss their own triangle;
@@ -22,6 +25,7 @@ mod agreement;
 mod determinism;
 mod errors;
 mod exact;
+mod grid;
 mod offset;
 mod packets;
 mod semantics;
