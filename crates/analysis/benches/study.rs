@@ -10,8 +10,8 @@
 //! the scene's triangles; the dual-paraboloid map, two hemispheres cast one ray per texel), at
 //! 2000². Everything is deterministic.
 //!
-//! And the logarithmic map's shadow pass at 2000² (`study::render`: planning, and 4 M texel rays
-//! cast as a grid). And the measurement's own phases for that combination, which every
+//! And the logarithmic map's shadows at 2000² (`study::render`: planning, 4 M texel rays cast as
+//! a grid, the eye pass's lookups). And the measurement's own phases for that combination, which every
 //! combination of a study pays once: the per-pixel texel footprints (`study::frame_footprints`; also through the
 //! logarithmic map at 2000², whose derivative is its own closed form), and their statistics
 //! (`aliasing::stats_of` of the total, perspective and projection parts, as `study::outcome`
@@ -89,8 +89,8 @@ fn whole_study(c: &mut Criterion) {
 }
 
 /// The footprints of lispsm at 2000² on `scene`'s eye pass, and their three statistics; the
-/// logarithmic map at the same size — its shadow pass (one ray per texel, swept) and its
-/// footprints, differentiated in closed form.
+/// logarithmic map at the same size — its shadows (one ray per texel, swept; then the lookups)
+/// and its footprints, differentiated in closed form.
 fn footprint_phases(
     group: &mut BenchmarkGroup<'_, WallTime>,
     scene: &Scene,
