@@ -71,9 +71,9 @@ const UNSET: Ray = Ray {
 };
 
 /// The fewest rays per stored triangle for which a grid is swept; below it the tree's packets
-/// are faster (docs/benchmarks.md: the bunny's 69 451 triangles under 256² parallel rays, about
-/// one ray per triangle, take twice as long swept; under 2048², sixty per triangle, 1.3–1.8
-/// times less). The crossover between was not measured.
+/// are faster (docs/benchmarks.md: 2048² parallel rays take 1.3–1.8 times less swept than through
+/// the packets over the bunny's 69 451 triangles, sixty rays per triangle, and 1.4–1.7 times more
+/// over the dragon's 871 306, five per triangle).
 const RAYS_PER_TRIANGLE: usize = 8;
 
 /// The axes of a grid: `axis` along the rays, `along` and `across` its rows, all unit length.
