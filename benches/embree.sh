@@ -3,9 +3,7 @@
 # meshes and the same rays (f32, written once by shadowlab's side), the same thread counts, closest
 # and any hit, shadowlab's exact f64 BVH (examples/ray_bench.rs) and Embree's f32 single rays and
 # 16-wide packets (benches/embree_bench.cpp), run interleaved (shadowlab, Embree, shadowlab, ...);
-# then a table of medians and ratios and the per-ray agreement of their answers. The grid set is
-# also timed swept (Bvh::closest_hits_grid, its answers checked against the batch's), a row of its
-# own against the same Embree runs.
+# then a table of medians and ratios and the per-ray agreement of their answers.
 #
 # Usage: bash benches/embree.sh [MESH.obj ...]
 #   (default: data/meshes/bunny.obj, and data/meshes/dragon.obj if fetched: fetch-dragon.sh there)

@@ -147,7 +147,7 @@ def report(out, name):
         for set_name in SETS:
             rays = ours[0]["rays"][set_name]
             for n in threads:
-                ms = medians(ours, what=what, set=set_name, mode="batch", threads=n)
+                ms = medians(ours, what=what, set=set_name, threads=n)
                 single = medians(theirs, what=what, set=set_name, mode="single", threads=n)
                 packet = medians(theirs, what=what, set=set_name, mode="packet16", threads=n)
                 ratio_single = statistics.median(e / s for s, e in zip(ms, single))
@@ -159,21 +159,6 @@ def report(out, name):
                     f"{spread([rate(m, rays) for m in packet]):>22}  "
                     f"{ratio_single:>7.2f}×†  {ratio_packet:>7.2f}×†"
                 )
-    # The grid swept (Bvh::closest_hits_grid) against the same Embree runs.
-    rays = ours[0]["rays"]["grid"]
-    for n in threads:
-        ms = medians(ours, what="closest", set="grid", mode="swept", threads=n)
-        single = medians(theirs, what="closest", set="grid", mode="single", threads=n)
-        packet = medians(theirs, what="closest", set="grid", mode="packet16", threads=n)
-        ratio_single = statistics.median(e / s for s, e in zip(ms, single))
-        ratio_packet = statistics.median(e / s for s, e in zip(ms, packet))
-        print(
-            f"   {'closest':8} {'grid':7} {n:>3}  "
-            f"{spread([rate(m, rays) for m in ms]):>22}  "
-            f"{spread([rate(m, rays) for m in single]):>22}  "
-            f"{spread([rate(m, rays) for m in packet]):>22}  "
-            f"{ratio_single:>7.2f}×†  {ratio_packet:>7.2f}×†  swept"
-        )
     print(f"   BVH build, ms, median [min–max] over repeats; ratio shadowlab ÷ Embree. {CAVEAT}")
     print(
         f"   {'thr':>3}  {'shadowlab':>22}  {'Embree (default)':>22}  {'Embree (HIGH)':>22}  "

@@ -8,9 +8,8 @@
 //!   them to `DIR` (formats below). Nothing is timed.
 //! * `ray_bench time DIR [--threads 1,2] [--runs R] [--warmup W] [--hits]` reads them back (f32
 //!   widened to f64, exactly), and per thread count, in a rayon pool of that size, times
-//!   `Bvh::new` and the batch queries `closest_hits` and `occluded_all` over each ray set, and
-//!   the grid set swept (`closest_hits_grid`, its rays taken row by row; its answers checked
-//!   against the batch's): `W` untimed runs, then `R` timed ones. It prints one JSON object (every timed run, in ms); with
+//!   `Bvh::new` and the batch queries `closest_hits` and `occluded_all` over each ray set: `W`
+//!   untimed runs, then `R` timed ones. It prints one JSON object (every timed run, in ms); with
 //!   `--hits` it writes the answers per ray for the agreement check.
 //!
 //! # Ray sets
@@ -406,20 +405,6 @@ fn time(dir: &Path, threads: &[usize], runs: usize, warmup: usize, hits: bool) -
             let rays = set.rays.len();
             records.push(json!({"what": "closest", "set": set.name, "mode": "batch",
                 "threads": n, "rays": rays, "ms": ms}));
-            if set.name == "grid" {
-                let (ms, swept) = timed(warmup, runs, || {
-                    pool.install(|| swept_grid(&bvh, &set.rays, set.t_max))
-                });
-                ensure!(
-                    swept?
-                        .iter()
-                        .enumerate()
-                        .all(|(k, hit)| *hit == closest[tiled(k)]),
-                    "the swept grid answers differently from the batch"
-                );
-                records.push(json!({"what": "closest", "set": set.name, "mode": "swept",
-                    "threads": n, "rays": rays, "ms": ms}));
-            }
             let (ms, occluded) = timed(warmup, runs, || {
                 pool.install(|| bvh.occluded_all(&set.rays, 0.0, set.t_max))
             });
@@ -461,37 +446,6 @@ fn time(dir: &Path, threads: &[usize], runs: usize, warmup: usize, hits: bool) -
     serde_json::to_writer(&mut stdout, &report)?;
     writeln!(stdout)?;
     Ok(())
-}
-
-/// The index in the tiled light-view set (`pixel_rays`) of texel `k` in row-major order.
-fn tiled(k: usize) -> usize {
-    let (side, tile) = (LIGHT as usize, TILE as usize);
-    let (i, j) = (k % side, k / side);
-    ((j / tile) * (side / tile) + i / tile) * tile * tile + (j % tile) * tile + i % tile
-}
-
-/// The grid set's closest hits by `Bvh::closest_hits_grid`, which takes the rays row by row:
-/// the answers in row-major order.
-fn swept_grid(
-    bvh: &Bvh,
-    rays: &[Ray],
-    t_max: f64,
-) -> Result<Vec<Option<shadowlab_trace::Hit>>, shadowlab_trace::TraceError> {
-    let side = LIGHT as usize;
-    let mut out = vec![None; rays.len()];
-    bvh.closest_hits_grid(
-        side,
-        |j, row| {
-            for (i, ray) in row.iter_mut().enumerate() {
-                *ray = rays[tiled(j * side + i)];
-            }
-        },
-        0.0,
-        t_max,
-        &mut out,
-        |_, hit| hit,
-    )?;
-    Ok(out)
 }
 
 fn write_hits(dir: &Path, set: &str, closest: &[i32], occluded: &[bool]) -> Result<()> {
