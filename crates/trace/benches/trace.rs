@@ -24,6 +24,7 @@ use std::path::{Path, PathBuf};
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use glam::DVec3;
+use rayon::iter::ParallelIterator;
 use shadowlab_trace::{Bvh, Ray};
 
 /// A mesh read from an OBJ file: positions and index triples.
@@ -229,12 +230,14 @@ fn queries(c: &mut Criterion) {
                         pool.install(|| bvh.occluded_all(black_box(&rays), 0.0, f64::INFINITY))
                     });
                 });
-                // The grids by the sweep (`Bvh::closest_hits_grid`), answers into a reused buffer.
+                // The grids by the sweep (`Bvh::closest_hits_grid`), answers into a new buffer
+                // filled by the workers, as `closest_hits` makes its own.
                 if let Some(row_len) = row_len {
-                    let mut out = vec![None; rays.len()];
                     group.bench_function(id("closest-grid", threads), |b| {
                         b.iter(|| {
                             pool.install(|| {
+                                let mut out: Vec<_> =
+                                    rayon::iter::repeat_n(None, rays.len()).collect();
                                 bvh.closest_hits_grid(
                                     row_len,
                                     |j, row| {
@@ -248,7 +251,8 @@ fn queries(c: &mut Criterion) {
                                     |_, hit| hit,
                                 )
                                 .expect("valid rays");
-                            });
+                                out
+                            })
                         });
                     });
                 }

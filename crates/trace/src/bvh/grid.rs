@@ -71,10 +71,11 @@ const UNSET: Ray = Ray {
 };
 
 /// The fewest rays per stored triangle for which a grid is swept; below it the tree's packets
-/// are faster (docs/benchmarks.md: 2048² parallel rays take 1.3–1.8 times less swept than through
-/// the packets over the bunny's 69 451 triangles, sixty rays per triangle, and 1.4–1.7 times more
-/// over the dragon's 871 306, five per triangle).
-const RAYS_PER_TRIANGLE: usize = 8;
+/// are as fast or faster (docs/benchmarks.md: 2048² parallel rays take about as long either way
+/// over the bunny's 69 451 triangles, sixty rays per triangle, and 1.4–1.7 times longer swept
+/// over the dragon's 871 306, five per triangle; the default scene's logarithmic map, 90 to 630
+/// per triangle, is 1.4 times faster swept).
+const RAYS_PER_TRIANGLE: usize = 64;
 
 /// The axes of a grid: `axis` along the rays, `along` and `across` its rows, all unit length.
 struct Axes {
@@ -288,7 +289,9 @@ fn count_below(sorted: &[f64], value: f64, or_equal: bool) -> usize {
     sorted.partition_point(|&a| before(a))
 }
 
-/// One work item's rays: set up, seen on the plane, row by row.
+/// One work item's rays — set up, seen on the plane, row by row — and their answers: buffers a
+/// worker reuses from one work item to the next.
+#[derive(Default)]
 struct Rows {
     rays: Vec<Ray>,
     prepared: Vec<PreparedRay>,
@@ -297,20 +300,20 @@ struct Rows {
     /// Per row, the extent of its points across the rows.
     lo: Vec<f64>,
     hi: Vec<f64>,
-    /// The slack δ of the module documentation, `None` if the rays are not parallel enough or a
-    /// row is not sorted along itself.
-    slack: Option<f64>,
+    /// The rays' closest hits.
+    hits: Vec<Option<Hit>>,
 }
 
 impl Bvh {
     /// [`Bvh::closest_hits`] for a grid of parallel rays, `row_len` rays per row, row `j` written
     /// by `row(j, rays)` (its rays, validated here, in order along the row); the answer of ray
-    /// `(i, j)` passed to `answer` with its ray and written to `out[j·row_len + i]`. Every answer is [`Bvh::closest_hit`]'s, bit for bit,
-    /// whatever the rays (the `grid` module); it comes fast where the rays are parallel and each
-    /// row's origins lie along it in order — a directional light's shadow-map texels — by a
-    /// sweep of the triangles over the rows instead of one descent of the tree per ray. Parallel
-    /// (rayon, whole rows of about [`GRID_CHUNK`] rays per work item); identical for any thread
-    /// count.
+    /// `(i, j)` passed to `answer` with its ray and written to `out[j·row_len + i]`. Every answer
+    /// is [`Bvh::closest_hit`]'s, bit for bit, whatever the rays (the `grid` module); it comes
+    /// faster where the rays are parallel, each row's origins lie along it in order and the rays
+    /// far outnumber the triangles — a directional light's shadow-map texels over a scene of a
+    /// few thousand triangles — by a sweep of the triangles over the rows instead of one descent
+    /// of the tree per ray. Parallel (rayon, whole rows of about [`GRID_CHUNK`] rays per work
+    /// item); identical for any thread count.
     ///
     /// # Errors
     /// The [`Ray::validate`] error of an invalid ray (of the first in its work item, of some work
@@ -352,21 +355,20 @@ impl Bvh {
         });
         out.par_chunks_mut(rows_per_item * row_len)
             .enumerate()
-            .try_for_each(|(item, out)| {
+            .try_for_each_init(Rows::default, |rows, (item, out)| {
                 let first_row = item * rows_per_item;
-                let rows = self.rows(&axes, row_len, first_row, out.len() / row_len, &row)?;
-                let hits = match (&index, rows.slack) {
+                let slack =
+                    self.rows(rows, &axes, row_len, first_row, out.len() / row_len, &row)?;
+                rows.hits.clear();
+                rows.hits.resize(rows.rays.len(), None);
+                match (&index, slack) {
                     (Some((images, buckets)), Some(slack)) => {
-                        self.sweep(&rows, row_len, images, buckets, slack, t_min, t_max)
+                        self.sweep(rows, row_len, images, buckets, slack, t_min, t_max);
                     }
-                    _ => {
-                        let mut hits = vec![None; rows.rays.len()];
-                        self.closest_item(&rows.prepared, t_min, t_max, &mut hits);
-                        hits
-                    }
-                };
-                for ((out, ray), hit) in out.iter_mut().zip(&rows.rays).zip(hits) {
-                    *out = answer(ray, hit);
+                    _ => self.closest_item(&rows.prepared, t_min, t_max, &mut rows.hits),
+                }
+                for ((out, ray), hit) in out.iter_mut().zip(&rows.rays).zip(&rows.hits) {
+                    *out = answer(ray, *hit);
                 }
                 Ok(())
             })
@@ -398,29 +400,44 @@ impl Bvh {
         images
     }
 
-    /// Rows `first_row..first_row + count` of the grid, set up and seen on the plane.
+    /// Rows `first_row..first_row + count` of the grid into `rows`, set up and seen on the plane;
+    /// the slack δ of the module documentation, `None` if the rays are not parallel enough or a
+    /// row is not sorted along itself.
     fn rows(
         &self,
+        rows: &mut Rows,
         axes: &Axes,
         row_len: usize,
         first_row: usize,
         count: usize,
         row: &(impl Fn(usize, &mut [Ray]) + Sync),
-    ) -> Result<Rows, TraceError> {
-        let n = row_len * count;
-        let mut rays = vec![UNSET; n];
+    ) -> Result<Option<f64>, TraceError> {
+        let Rows {
+            rays,
+            prepared,
+            along,
+            lo,
+            hi,
+            hits: _,
+        } = rows;
+        rays.clear();
+        rays.resize(row_len * count, UNSET);
         for (j, rays) in rays.chunks_mut(row_len).enumerate() {
             row(first_row + j, rays);
         }
-        for ray in &rays {
+        for ray in rays.iter() {
             ray.validate()?;
         }
-        let prepared: Vec<PreparedRay> = rays
-            .iter()
-            .map(|ray| PreparedRay::set_up(ray, self.magnitude))
-            .collect();
-        let mut along = Vec::with_capacity(n);
-        let (mut lo, mut hi) = (vec![f64::INFINITY; count], vec![f64::NEG_INFINITY; count]);
+        prepared.clear();
+        prepared.extend(
+            rays.iter()
+                .map(|ray| PreparedRay::set_up(ray, self.magnitude)),
+        );
+        along.clear();
+        lo.clear();
+        lo.resize(count, f64::INFINITY);
+        hi.clear();
+        hi.resize(count, f64::NEG_INFINITY);
         let mut sorted = true;
         // The slope's bound: the largest |L(d)|² over the smallest d·a (all positive).
         let (mut sideways, mut ahead, mut reach) = (0.0_f64, f64::INFINITY, 0.0_f64);
@@ -441,34 +458,22 @@ impl Bvh {
         // At least every ray's |L(d)|/(d·a); false for rays across or against the axis.
         let slope = sideways.sqrt() / ahead;
         let parallel = ahead > 0.0 && slope <= MAX_SLOPE;
-        let slack = (sorted && parallel).then_some(SLACK * reach + 4.0 * reach * slope);
-        Ok(Rows {
-            rays,
-            prepared,
-            along,
-            lo,
-            hi,
-            slack,
-        })
+        Ok((sorted && parallel).then_some(SLACK * reach + 4.0 * reach * slope))
     }
 
-    /// The closest hits of a work item's rays by the sweep (module documentation).
+    /// The closest hits of a work item's rays by the sweep (module documentation), into
+    /// `rows.hits` (all `None` on entry).
     #[expect(clippy::too_many_arguments, reason = "one work item's whole context")]
     fn sweep(
         &self,
-        rows: &Rows,
+        rows: &mut Rows,
         row_len: usize,
         images: &[Image],
         buckets: &Buckets,
         slack: f64,
         t_min: f64,
         t_max: f64,
-    ) -> Vec<Option<Hit>> {
-        let n = rows.rays.len();
-        // As in `closest`: a hit must have t < best_t, or t == best_t and a smaller index.
-        let mut best_t = vec![t_max; n];
-        let mut best_id = vec![0_u32; n];
-        let mut best_uv: Vec<Option<(f64, f64)>> = vec![None; n];
+    ) {
         let band_lo = rows.lo.iter().copied().fold(f64::INFINITY, f64::min) - slack;
         let band_hi = rows.hi.iter().copied().fold(f64::NEG_INFINITY, f64::max) + slack;
         for image in buckets.meeting(images, band_lo, band_hi) {
@@ -494,24 +499,23 @@ impl Bvh {
                     };
                     let Some((t, u, v)) = found else { continue };
                     let id = image.id;
-                    if t_min < t && (t < best_t[k] || (t == best_t[k] && id < best_id[k])) {
-                        best_t[k] = t;
-                        best_id[k] = id;
-                        best_uv[k] = Some((u, v));
+                    // As in `closest`: a hit must have t < t_max, or beat the best so far by a
+                    // smaller t, or an equal t and a smaller index.
+                    let wins = match &rows.hits[k] {
+                        None => t < t_max,
+                        Some(best) => t < best.t || (t == best.t && id < best.triangle),
+                    };
+                    if t_min < t && wins {
+                        rows.hits[k] = Some(Hit {
+                            t,
+                            triangle: id,
+                            u,
+                            v,
+                        });
                     }
                 }
             }
         }
-        (0..n)
-            .map(|k| {
-                best_uv[k].map(|(u, v)| Hit {
-                    t: best_t[k],
-                    triangle: best_id[k],
-                    u,
-                    v,
-                })
-            })
-            .collect()
     }
 }
 
@@ -546,7 +550,8 @@ mod tests {
     fn slack(bvh: &Bvh, rays: &[Ray]) -> Option<f64> {
         let axes = Axes::of(&rays[0], &rays[3]);
         let row = |j: usize, out: &mut [Ray]| out.copy_from_slice(&rays[4 * j..4 * j + 4]);
-        bvh.rows(&axes, 4, 0, 3, &row).expect("valid rays").slack
+        bvh.rows(&mut Rows::default(), &axes, 4, 0, 3, &row)
+            .expect("valid rays")
     }
 
     /// Parallel rows in order are swept, with a slack of the order of `SLACK·R`; converging rays
