@@ -415,11 +415,9 @@ impl Bvh {
     #[must_use]
     pub fn closest_hits(&self, rays: &[Ray], t_min: f64, t_max: f64) -> Vec<Option<Hit>> {
         check_range(t_min, t_max);
-        self.batch(
-            rays,
-            |ray, stack| self.closest_prepared(ray, t_min, t_max, stack),
-            |rays, packet, stack, out| self.closest_packet(rays, packet, t_min, t_max, stack, out),
-        )
+        self.batch(rays, |prepared, out| {
+            self.closest_item(prepared, t_min, t_max, out);
+        })
     }
 
     /// [`Bvh::occluded`] for every ray, in parallel (rayon, [`RAY_CHUNK`] rays per work item); the
@@ -431,20 +429,24 @@ impl Bvh {
     #[must_use]
     pub fn occluded_all(&self, rays: &[Ray], t_min: f64, t_max: f64) -> Vec<bool> {
         check_range(t_min, t_max);
-        self.batch(
-            rays,
-            |ray, stack| self.occluded_prepared(ray, t_min, t_max, stack),
-            |rays, packet, stack, out| self.occluded_packet(rays, packet, t_min, t_max, stack, out),
-        )
+        self.batch(rays, |prepared, out| {
+            Self::item(
+                prepared,
+                |ray, stack| self.occluded_prepared(ray, t_min, t_max, stack),
+                |rays, packet, stack, out| {
+                    self.occluded_packet(rays, packet, t_min, t_max, stack, out);
+                },
+                out,
+            );
+        })
     }
 
-    /// Casts `rays` in parallel work items of [`RAY_CHUNK`] rays (`item`); each answer is written
-    /// in its ray's place.
+    /// Casts `rays` in parallel work items of [`RAY_CHUNK`] rays, each set up and answered by
+    /// `item` into its place.
     fn batch<T: Clone + Default + Send>(
         &self,
         rays: &[Ray],
-        single: impl Fn(&PreparedRay, &mut Stack) -> T + Sync,
-        packet: impl Fn(&[PreparedRay], &Packet, &mut PacketStack, &mut [T]) + Sync,
+        item: impl Fn(&[PreparedRay], &mut [T]) + Sync,
     ) -> Vec<T> {
         // Filled by the workers, not `vec!` (docs/CONVENTIONS.md, "Large buffers"): a 2048² grid's
         // answers are 160 MB of `Option<Hit>`.
@@ -463,7 +465,7 @@ impl Bvh {
                         })
                     })
                     .collect();
-                Self::item(&prepared, &single, &packet, out);
+                item(&prepared, out);
             });
         out
     }
