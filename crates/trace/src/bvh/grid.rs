@@ -357,15 +357,19 @@ impl Bvh {
             .enumerate()
             .try_for_each_init(Rows::default, |rows, (item, out)| {
                 let first_row = item * rows_per_item;
-                let slack =
-                    self.rows(rows, &axes, row_len, first_row, out.len() / row_len, &row)?;
+                let count = out.len() / row_len;
+                self.load(rows, row_len, first_row, count, &row)?;
                 rows.hits.clear();
                 rows.hits.resize(rows.rays.len(), None);
-                match (&index, slack) {
-                    (Some((images, buckets)), Some(slack)) => {
+                // The rows seen on the plane only for a grid that may be swept.
+                let swept = index
+                    .as_ref()
+                    .and_then(|index| Some((index, self.slack(rows, &axes, row_len, count)?)));
+                match swept {
+                    Some(((images, buckets), slack)) => {
                         self.sweep(rows, row_len, images, buckets, slack, t_min, t_max);
                     }
-                    _ => self.closest_item(&rows.prepared, t_min, t_max, &mut rows.hits),
+                    None => self.closest_item(&rows.prepared, t_min, t_max, &mut rows.hits),
                 }
                 for ((out, ray), hit) in out.iter_mut().zip(&rows.rays).zip(&rows.hits) {
                     *out = answer(ray, *hit);
@@ -400,26 +404,16 @@ impl Bvh {
         images
     }
 
-    /// Rows `first_row..first_row + count` of the grid into `rows`, set up and seen on the plane;
-    /// the slack δ of the module documentation, `None` if the rays are not parallel enough or a
-    /// row is not sorted along itself.
-    fn rows(
+    /// Rows `first_row..first_row + count` of the grid into `rows`, validated and set up.
+    fn load(
         &self,
         rows: &mut Rows,
-        axes: &Axes,
         row_len: usize,
         first_row: usize,
         count: usize,
         row: &(impl Fn(usize, &mut [Ray]) + Sync),
-    ) -> Result<Option<f64>, TraceError> {
-        let Rows {
-            rays,
-            prepared,
-            along,
-            lo,
-            hi,
-            hits: _,
-        } = rows;
+    ) -> Result<(), TraceError> {
+        let Rows { rays, prepared, .. } = rows;
         rays.clear();
         rays.resize(row_len * count, UNSET);
         for (j, rays) in rays.chunks_mut(row_len).enumerate() {
@@ -433,6 +427,20 @@ impl Bvh {
             rays.iter()
                 .map(|ray| PreparedRay::set_up(ray, self.magnitude)),
         );
+        Ok(())
+    }
+
+    /// The loaded rows seen on the plane (`along`, `lo`, `hi` of `rows`), and the slack δ of the
+    /// module documentation; `None` if the rays are not parallel enough or a row is not sorted
+    /// along itself.
+    fn slack(&self, rows: &mut Rows, axes: &Axes, row_len: usize, count: usize) -> Option<f64> {
+        let Rows {
+            rays,
+            along,
+            lo,
+            hi,
+            ..
+        } = rows;
         along.clear();
         lo.clear();
         lo.resize(count, f64::INFINITY);
@@ -458,7 +466,7 @@ impl Bvh {
         // At least every ray's |L(d)|/(d·a); false for rays across or against the axis.
         let slope = sideways.sqrt() / ahead;
         let parallel = ahead > 0.0 && slope <= MAX_SLOPE;
-        Ok((sorted && parallel).then_some(SLACK * reach + 4.0 * reach * slope))
+        (sorted && parallel).then_some(SLACK * reach + 4.0 * reach * slope)
     }
 
     /// The closest hits of a work item's rays by the sweep (module documentation), into
@@ -550,8 +558,9 @@ mod tests {
     fn slack(bvh: &Bvh, rays: &[Ray]) -> Option<f64> {
         let axes = Axes::of(&rays[0], &rays[3]);
         let row = |j: usize, out: &mut [Ray]| out.copy_from_slice(&rays[4 * j..4 * j + 4]);
-        bvh.rows(&mut Rows::default(), &axes, 4, 0, 3, &row)
-            .expect("valid rays")
+        let mut rows = Rows::default();
+        bvh.load(&mut rows, 4, 0, 3, &row).expect("valid rays");
+        bvh.slack(&mut rows, &axes, 4, 3)
     }
 
     /// Parallel rows in order are swept, with a slack of the order of `SLACK·R`; converging rays
