@@ -65,6 +65,7 @@ use glam::{DMat2, DMat4, DVec2, DVec3, DVec4};
 use rayon::prelude::*;
 use shadowlab_raster::{EyeImage, NO_TRIANGLE};
 use shadowlab_scene::Camera;
+use shadowlab_shadow::homogeneous::quotient;
 use shadowlab_shadow::logarithmic::LogarithmicMap;
 use shadowlab_shadow::paraboloid::ParaboloidMap;
 use shadowlab_shadow::{LightSetup, ShadowMapping};
@@ -160,7 +161,7 @@ impl At<'_> {
             Self::Projective { m, clip: p } => {
                 let dp = **m * direction.extend(0.0);
                 // Window = (ndc + 1)/2: half the derivative of p_k/p_w.
-                let d = |k: usize| 0.5 * (dp[k] * p.w - p[k] * dp.w) / (p.w * p.w);
+                let d = |k: usize| quotient(0.5 * (dp[k] * p.w - p[k] * dp.w), p.w * p.w);
                 Some(DVec2::new(d(0), d(1)))
             }
             // Window = (ndc + 1)/2.

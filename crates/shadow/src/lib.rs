@@ -41,6 +41,7 @@ pub mod faces;
 mod focus;
 mod frame;
 mod gather;
+pub mod homogeneous;
 mod input;
 pub mod logarithmic;
 mod logarithmic_map;

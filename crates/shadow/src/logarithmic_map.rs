@@ -4,6 +4,8 @@
 
 use glam::{DMat4, DVec2, DVec3};
 
+use crate::homogeneous::{divided, point_of};
+
 /// The exact logarithmic mapping of one shadow map.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct LogarithmicMap {
@@ -52,7 +54,7 @@ impl LogarithmicMap {
         if h.w <= 0.0 {
             return None;
         }
-        let q = h.truncate() / h.w;
+        let q = point_of(h);
         let tau = (self.z_max - q.z) / self.depth;
         let w = 1.0 + self.kappa * tau;
         (w > 0.0).then_some((q, tau, w))
@@ -81,8 +83,8 @@ impl LogarithmicMap {
             return None;
         }
         let dh = self.world_to_light * direction.extend(0.0);
-        let q = h.truncate() / h.w;
-        let dq = (dh.truncate() * h.w - h.truncate() * dh.w) / (h.w * h.w);
+        let q = point_of(h);
+        let dq = divided(dh.truncate() * h.w - h.truncate() * dh.w, h.w * h.w);
         let tau = (self.z_max - q.z) / self.depth;
         let w = 1.0 + self.kappa * tau;
         if w <= 0.0 {
@@ -181,8 +183,7 @@ impl TexelRow<'_> {
         let map = self.map;
         let lateral = 0.5 * self.w * (x * (map.right - map.left) + map.left + map.right);
         let to_world = |light_y: f64| {
-            let h = map.light_to_world * DVec3::new(lateral, light_y, self.z).extend(1.0);
-            h.truncate() / h.w
+            point_of(map.light_to_world * DVec3::new(lateral, light_y, self.z).extend(1.0))
         };
         (to_world(map.y_max), to_world(map.y_min))
     }

@@ -106,8 +106,12 @@ impl ShadowMap {
             });
         }
         let side = options.resolution as usize;
+        // Texel k's centre in NDC, for columns and rows alike: found once per map, not per texel.
         #[expect(clippy::cast_precision_loss, reason = "texel indices are small")]
-        let centre = |k: usize| (k as f64 + 0.5) / side as f64 * 2.0 - 1.0;
+        let centres: Vec<f64> = (0..side)
+            .map(|k| (k as f64 + 0.5) / side as f64 * 2.0 - 1.0)
+            .collect();
+        let centre = |k: usize| centres[k];
         let store = |ray: &Ray, t: f64| {
             let point = ray.at(t);
             let ndc = match mapping {

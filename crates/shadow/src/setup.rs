@@ -3,6 +3,8 @@
 
 use glam::{DMat4, DVec3};
 
+use crate::homogeneous::point_of;
+
 use crate::logarithmic_map::LogarithmicMap;
 use crate::paraboloid_map::ParaboloidMap;
 use crate::technique::Technique;
@@ -84,7 +86,7 @@ impl ShadowMapping {
                 if clip.w <= 0.0 {
                     return None;
                 }
-                clip.truncate() / clip.w
+                point_of(clip)
             }
             Self::Logarithmic(map) => map.ndc(world)?,
             Self::Paraboloid(map) => map.ndc(world)?,
