@@ -474,10 +474,8 @@ fn self_blocked(context: &Context<'_>, maps: &LightMaps<'_>, index: usize, pixel
     let Some(window) = map.setup.mapping.window(context.eye.position[pixel]) else {
         return false;
     };
-    // The texel exactly as the lookup finds it: through texel space and back.
-    let side = f64::from(map.resolution);
-    let (x, y) = (window.x * side, window.y * side);
-    let Some((i, j)) = map.texel_of(DVec3::new(x / side, y / side, 0.0)) else {
+    // The texel the nearest lookup reads.
+    let Some((i, j)) = map.texel_of(window) else {
         return false;
     };
     if map.depth(i, j) >= window.z {

@@ -485,7 +485,7 @@ impl Lookup {
         let at = (world, window);
         let comparison = Comparison::new(self.bias.comparison, map, &at, &normal, one_tap);
         let test = |offset: DVec2, nearest: bool| {
-            let Some(texel) = texel(map, centre + offset) else {
+            let Some(texel) = map.texel_at(centre + offset) else {
                 return 1.0;
             };
             // The nearest filter's tap is the centre of the texel it reads.
@@ -523,12 +523,6 @@ impl Lookup {
     }
 }
 
-/// The texel holding texel-space position `at` (`None` off the map).
-fn texel(map: &ShadowMap, at: DVec2) -> Option<(u32, u32)> {
-    let side = f64::from(map.resolution);
-    map.texel_of(DVec3::new(at.x / side, at.y / side, 0.0))
-}
-
 /// A filterable map's lit fraction: `lit` of the [`Footprint`] of the `size × size` texels around
 /// `centre`; 1 where the texel holding `centre` is off the map. The depths are a map's stored window
 /// depths, in `[0, 1]`, and the methods' parameters are checked when the filter is parsed
@@ -540,7 +534,7 @@ fn filtered(
     size: u32,
     lit: impl FnOnce(&Footprint) -> Result<f64, ParamError>,
 ) -> f64 {
-    let Some((ci, cj)) = texel(map, centre) else {
+    let Some((ci, cj)) = map.texel_at(centre) else {
         return 1.0;
     };
     let half = 0.5 * f64::from(size.saturating_sub(1));
@@ -548,7 +542,7 @@ fn filtered(
     for b in 0..size {
         for a in 0..size {
             let offset = DVec2::new(f64::from(a) - half, f64::from(b) - half);
-            if let Some((i, j)) = texel(map, centre + offset) {
+            if let Some((i, j)) = map.texel_at(centre + offset) {
                 taps.push(Tap {
                     column: a as usize,
                     row: b as usize,

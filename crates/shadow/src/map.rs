@@ -1,6 +1,6 @@
 //! Rendering a planned shadow map.
 
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 use shadowlab_raster::{
     DepthFormat, DepthPairTarget, DepthTarget, RasterError, RasterOptions, Rasterizer, Triangles,
@@ -269,11 +269,19 @@ impl ShadowMap {
     }
 
     /// The texel `(i, j)` (column, row from the bottom) holding window point `(x, y)`, if it lies on
-    /// the map.
+    /// the map: [`Self::texel_at`] of `(x, y)` in texels.
     #[must_use]
     pub fn texel_of(&self, window: DVec3) -> Option<(u32, u32)> {
         let side = f64::from(self.resolution);
-        let (i, j) = ((window.x * side).floor(), (window.y * side).floor());
+        self.texel_at(DVec2::new(window.x * side, window.y * side))
+    }
+
+    /// The texel `(i, j)` holding texel-space point `at` (texels from the map's bottom-left
+    /// corner: `(⌊at.x⌋, ⌊at.y⌋)`), if it lies on the map.
+    #[must_use]
+    pub fn texel_at(&self, at: DVec2) -> Option<(u32, u32)> {
+        let side = f64::from(self.resolution);
+        let (i, j) = (at.x.floor(), at.y.floor());
         #[expect(
             clippy::cast_possible_truncation,
             clippy::cast_sign_loss,

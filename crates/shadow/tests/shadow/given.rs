@@ -2,7 +2,7 @@
 //! depths given back make the same map and the same lookups; given depths are stored in their
 //! format; each partition is read with its own bias.
 
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 use shadowlab_raster::{DepthFormat, NO_TRIANGLE, RasterError};
 use shadowlab_scene::{Scene, builtin_scene};
 use shadowlab_shadow::{
@@ -155,4 +155,38 @@ fn each_partition_is_read_with_its_own_lookup() {
         );
     }
     assert!(counts[0] > 0 && counts[1] > 0, "{counts:?}");
+}
+
+/// Claim: the texel holding a texel-space point is its floor on each axis, on the map only (the
+/// nearest lookup's and the filters' taps read it), and a window point's texel is that of the point
+/// scaled to texels.
+#[test]
+fn a_texel_holds_the_points_it_floors_to() {
+    let scene = scene();
+    let (eye, nearest) = eye_pass(&scene).unwrap();
+    let setup = plan_frame(&scene, &options(1), nearest, Some(&eye)).unwrap()[0][0]
+        .setup
+        .clone();
+    let map = ShadowMap::from_depths(setup, 4, DepthFormat::F32, vec![0.5; 16], None).unwrap();
+    let below = |x: f64| f64::from_bits(x.to_bits() - 1);
+    for (at, expected) in [
+        ((0.0, 0.0), Some((0, 0))),
+        ((-0.0, 3.999), Some((0, 3))),
+        ((below(1.0), 1.0), Some((0, 1))),
+        ((2.5, below(4.0)), Some((2, 3))),
+        ((-1e-300, 1.0), None),
+        ((1.0, 4.0), None),
+        ((4.0, 0.0), None),
+        ((f64::NAN, 1.0), None),
+        ((1.0, f64::INFINITY), None),
+    ] {
+        assert_eq!(map.texel_at(DVec2::new(at.0, at.1)), expected, "{at:?}");
+    }
+    for window in [DVec3::new(0.3, 0.7, 0.2), DVec3::new(0.25, 0.999, 0.0)] {
+        let side = 4.0;
+        assert_eq!(
+            map.texel_of(window),
+            map.texel_at(DVec2::new(window.x * side, window.y * side))
+        );
+    }
 }

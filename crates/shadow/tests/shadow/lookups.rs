@@ -534,7 +534,7 @@ fn lit_before_knobs(map: &ShadowMap, filter: Filter, world: DVec3) -> f64 {
     };
     let side = f64::from(map.resolution);
     let centre = DVec2::new(window.x * side, window.y * side);
-    let texel = |at: DVec2| map.texel_of(DVec3::new(at.x / side, at.y / side, 0.0));
+    let texel = |at: DVec2| map.texel_at(at);
     let Some((ci, cj)) = texel(centre) else {
         return 1.0;
     };
