@@ -6,9 +6,9 @@ use glam::{DVec2, DVec3};
 use shadowlab_raster::{DepthFormat, NO_TRIANGLE, RasterError};
 use shadowlab_scene::{Scene, builtin_scene};
 use shadowlab_shadow::{
-    Bias, DepthComparison, Filter, FrameOptions, GivenDepths, LightMaps, LightSource, Lookup,
-    MapSource, PartitionMap, PlanOptions, Selection, ShadowError, ShadowMap, Splits, Technique,
-    eye_pass, plan_frame, render_shadows, scene_eye, served, shadows_of,
+    Bias, DepthComparison, Filter, FrameOptions, GivenDepths, LightMaps, LightSetup, LightSource,
+    Lookup, MapSource, PartitionMap, PlanOptions, Selection, ShadowError, ShadowMap, Splits,
+    Technique, eye_pass, plan_frame, render_shadows, scene_eye, served, shadows_of,
 };
 
 /// `outdoor` at a small eye image.
@@ -68,14 +68,19 @@ fn a_maps_own_depths_given_back_change_nothing() {
     assert_eq!(given.timings.planning, std::time::Duration::ZERO);
 }
 
+/// The set-up of the scene's one map under `options(1)`.
+fn one_map_setup() -> LightSetup {
+    let scene = scene();
+    let (eye, nearest) = eye_pass(&scene).unwrap();
+    plan_frame(&scene, &options(1), nearest, Some(&eye)).unwrap()[0][0]
+        .setup
+        .clone()
+}
+
 /// Claim: given depths are stored as their format stores them, and must fill the map.
 #[test]
 fn given_depths_are_stored_in_their_format_and_fill_the_map() {
-    let scene = scene();
-    let (eye, nearest) = eye_pass(&scene).unwrap();
-    let setup = plan_frame(&scene, &options(1), nearest, Some(&eye)).unwrap()[0][0]
-        .setup
-        .clone();
+    let setup = one_map_setup();
     let depths = vec![0.3, 1.0, 0.0, 0.123_456_789];
     let map = ShadowMap::from_depths(
         setup.clone(),
@@ -162,11 +167,7 @@ fn each_partition_is_read_with_its_own_lookup() {
 /// scaled to texels.
 #[test]
 fn a_texel_holds_the_points_it_floors_to() {
-    let scene = scene();
-    let (eye, nearest) = eye_pass(&scene).unwrap();
-    let setup = plan_frame(&scene, &options(1), nearest, Some(&eye)).unwrap()[0][0]
-        .setup
-        .clone();
+    let setup = one_map_setup();
     let map = ShadowMap::from_depths(setup, 4, DepthFormat::F32, vec![0.5; 16], None).unwrap();
     let below = |x: f64| f64::from_bits(x.to_bits() - 1);
     for (at, expected) in [
