@@ -96,6 +96,7 @@ use shadowlab_params::{DepthRange, ParamError};
 use crate::error::ShadowError;
 use crate::frame::LightFrame;
 use crate::gather::gather;
+use crate::homogeneous::point_of;
 use crate::input::{LightSource, PlanInput};
 use crate::partition::Partition;
 use crate::setup::{LightSetup, ProjectiveMapping, ShadowMapping};
@@ -372,7 +373,7 @@ fn light_setup(
 /// light): [`LightFrame::light_point`] with the matrix made once.
 fn light_point(to_light: &DMat4, world: DVec3) -> Option<DVec3> {
     let h: DVec4 = *to_light * world.extend(1.0);
-    (h.w > 0.0).then(|| h.truncate() / h.w)
+    (h.w > 0.0).then(|| point_of(h))
 }
 
 /// The index of the partition, of those starting at `nears` (non-decreasing), that serves depth
