@@ -4,7 +4,6 @@
 use glam::{DMat4, DVec3};
 
 use crate::homogeneous::point_of;
-
 use crate::logarithmic_map::LogarithmicMap;
 use crate::paraboloid_map::ParaboloidMap;
 use crate::technique::Technique;
