@@ -71,6 +71,9 @@ use shadowlab_shadow::paraboloid::ParaboloidMap;
 use shadowlab_shadow::{LightSetup, ShadowMapping};
 
 use crate::exact_sum::ExactSum;
+use block::{LANES, footprint_block};
+
+mod block;
 
 /// Below this `cos β` (the surface within 0.057° of edge-on to the light's rays) a point has no
 /// footprint: a texel's shaft of light meets the surface along a line, `det J → 0` for every map,
@@ -314,7 +317,8 @@ pub fn footprints(
 /// [`footprints`] through one of several maps per pixel — `maps[k]` being a setup and its map
 /// side, `serving(pixel)` the index of the map that serves pixel `pixel` (`None`: no footprint):
 /// each pixel's footprint is computed once, through its own map, as a partitioned shadow looks it
-/// up.
+/// up. Four neighbouring pixels served by one projective map are measured side by side (the
+/// `block` module: the same bits as one by one).
 #[must_use]
 pub fn footprints_served(
     maps: &[(&LightSetup, u32)],
@@ -327,19 +331,57 @@ pub fn footprints_served(
         .map(|&(setup, resolution)| (Prepared::new(&setup.mapping), resolution))
         .collect();
     let viewer = Viewer::new(camera);
-    eye.triangle
-        .par_iter()
-        .zip(&eye.position)
-        .zip(&eye.normal)
-        .enumerate()
-        .map(|(pixel, ((&triangle, &point), &normal))| {
-            if triangle == NO_TRIANGLE {
-                return None;
+    let pixels = eye.triangle.len();
+    // The map serving a pixel, if it is visible.
+    let map_of = |pixel: usize| {
+        if eye.triangle[pixel] == NO_TRIANGLE {
+            return None;
+        }
+        mappings.get(serving(pixel)?)
+    };
+    let one = |pixel: usize| {
+        let (mapping, resolution) = map_of(pixel)?;
+        footprint_of(&local(
+            mapping,
+            *resolution,
+            &viewer,
+            eye.position[pixel],
+            eye.normal[pixel],
+        )?)
+    };
+    let blocks: Vec<[Option<Footprint>; LANES]> = (0..pixels.div_ceil(LANES))
+        .into_par_iter()
+        .map(|block| {
+            let first = block * LANES;
+            if first + LANES <= pixels {
+                let served: [_; LANES] = std::array::from_fn(|k| map_of(first + k));
+                if let Some((Prepared::Projective(m), resolution)) = served[0]
+                    && served
+                        .iter()
+                        .all(|s| s.is_some_and(|s| std::ptr::eq(s, served[0].expect("some"))))
+                {
+                    let at = |field: &[DVec3]| std::array::from_fn(|k| field[first + k]);
+                    return footprint_block(
+                        m,
+                        *resolution,
+                        &viewer,
+                        &at(&eye.position),
+                        &at(&eye.normal),
+                    );
+                }
             }
-            let (mapping, resolution) = mappings.get(serving(pixel)?)?;
-            footprint_of(&local(mapping, *resolution, &viewer, point, normal)?)
+            std::array::from_fn(|k| {
+                if first + k < pixels {
+                    one(first + k)
+                } else {
+                    None
+                }
+            })
         })
-        .collect()
+        .collect();
+    let mut footprints = blocks.into_flattened();
+    footprints.truncate(pixels);
+    footprints
 }
 
 /// Summary of a set of aliasing values.
