@@ -23,9 +23,9 @@ use crate::map::ShadowMap;
 
 /// A receiver's depth slope per texel is capped here: a surface seen edge-on by the light would
 /// otherwise get an unbounded bias.
-const MAX_SLOPE: f64 = 1.0;
+pub(crate) const MAX_SLOPE: f64 = 1.0;
 /// Step along the surface for the slope, relative to the point's distance from the origin (or 1).
-const SLOPE_STEP: f64 = 1e-5;
+pub(crate) const SLOPE_STEP: f64 = 1e-5;
 /// Step of the central differences for the window gradients of [`LightTexel::at`], relative to
 /// the point's distance from the origin (or 1), as [`SLOPE_STEP`].
 const GRADIENT_STEP: f64 = 1e-5;
@@ -610,7 +610,7 @@ impl<'a> Comparison<'a> {
             (self.deferred, self.comparison)
         {
             let base = map.depth(i, j) + constant;
-            if slope >= 0.0 && receiver <= base {
+            if lit_whatever_the_slope(base, slope, receiver) {
                 return true;
             }
             // Lit's limit, with the slope found now.
@@ -664,6 +664,14 @@ impl<'a> Comparison<'a> {
     }
 }
 
+/// Whether a slope-scaled comparison lights the receiver at window depth `receiver` whatever its
+/// slope: its limit `base + factor·slope` (`base = z₁ + constant`, the slope capped to
+/// `[0, MAX_SLOPE]`) never falls below `base` when `factor` is not negative, as rounding is
+/// monotone; so a receiver at or in front of `base` is lit ([`Comparison::lit_only_tap`]).
+pub(crate) fn lit_whatever_the_slope(base: f64, factor: f64, receiver: f64) -> bool {
+    factor >= 0.0 && receiver <= base
+}
+
 /// CAD eq. 1 through `shadowlab-params`; an empty texel (z1 at the far plane) lights everything.
 fn table_1(bias: DepthBias, z1: f64, z2: f64) -> f64 {
     bias.z_map(z1, z2).unwrap_or(f64::INFINITY)
@@ -672,7 +680,7 @@ fn table_1(bias: DepthBias, z1: f64, z2: f64) -> f64 {
 /// The receiver's window-depth slope per texel: the larger of `|∂z/∂x|`, `|∂z/∂y|` of
 /// [`depth_gradient`], capped at [`MAX_SLOPE`] (which is also the slope where the gradient is
 /// undefined).
-fn depth_slope(map: &ShadowMap, at: (DVec3, DVec3), normal: DVec3) -> f64 {
+pub(crate) fn depth_slope(map: &ShadowMap, at: (DVec3, DVec3), normal: DVec3) -> f64 {
     depth_gradient(map, at, normal).map_or(MAX_SLOPE, |gradient| {
         gradient.x.abs().max(gradient.y.abs()).min(MAX_SLOPE)
     })

@@ -15,13 +15,13 @@ use shadowlab_trace::Bvh;
 use crate::error::ShadowError;
 use crate::gather::gather;
 use crate::input::{Eye, FocusPolicy, LightSource, PlanInput};
-use crate::lookup::Lookup;
+use crate::lookup::{LANES, Lookup};
 use crate::map::{MapOptions, ShadowMap};
 use crate::optimal::{self, OptimalOptions};
 use crate::partition::{Partition, Region};
 use crate::plan::{Splits, plan_partitions};
 use crate::selection::Selection;
-use crate::serving::served;
+use crate::serving::{Served, served};
 use crate::snap::snap_to_texels;
 use crate::technique::Technique;
 use crate::{cube, paraboloid, sdsm};
@@ -587,10 +587,20 @@ pub fn lit_with(shadow: &LightShadow, lookups: &[Lookup], eye: &Eye, image: &Eye
     let width = image.width as usize;
     // Filled by the workers, not `vec!` (docs/CONVENTIONS.md, "Large buffers").
     let mut lit: Vec<f64> = rayon::iter::repeat_n(1.0, image.triangle.len()).collect();
+    // Whether four pixels served by one map may be looked up together (`lit_rows_together`),
+    // decided once: the path every other lookup takes is left as it was.
+    let together = lookups
+        .iter()
+        .zip(&shadow.maps)
+        .any(|(lookup, (_, map))| lookup.reads_together(map));
     lit.par_chunks_mut(width * LOOKUP_ROWS)
         .enumerate()
         .for_each(|(chunk, rows)| {
             let first = chunk * width * LOOKUP_ROWS;
+            if together {
+                lit_rows_together(shadow, lookups, eye, image, first, rows);
+                return;
+            }
             for (k, value) in rows.iter_mut().enumerate() {
                 let pixel = first + k;
                 if image.triangle[pixel] == NO_TRIANGLE {
@@ -609,4 +619,75 @@ pub fn lit_with(shadow: &LightShadow, lookups: &[Lookup], eye: &Eye, image: &Eye
             }
         });
     lit
+}
+
+/// [`lit_with`]'s work on the pixels `rows` from `first`, four neighbours at a time where one map
+/// serves them all ([`lit_block`]), one by one elsewhere.
+fn lit_rows_together(
+    shadow: &LightShadow,
+    lookups: &[Lookup],
+    eye: &Eye,
+    image: &EyeImage,
+    first: usize,
+    rows: &mut [f64],
+) {
+    let serving = |pixel: usize| {
+        if image.triangle[pixel] == NO_TRIANGLE {
+            return None;
+        }
+        served(
+            &shadow.maps,
+            |(p, _)| p,
+            &shadow.selection,
+            eye,
+            image.position[pixel],
+        )
+    };
+    for (block, values) in rows.chunks_mut(LANES).enumerate() {
+        let first = first + block * LANES;
+        let served: [Option<Served>; LANES] =
+            std::array::from_fn(|k| (k < values.len()).then(|| serving(first + k))?);
+        if let Some(lit) = lit_block(shadow, lookups, image, first, &served) {
+            values.copy_from_slice(&lit);
+            continue;
+        }
+        for (k, value) in values.iter_mut().enumerate() {
+            let Some(serving) = served[k] else { continue };
+            let (position, normal) = (image.position[first + k], image.normal[first + k]);
+            *value = serving.combine(|index| {
+                lookups[index].lit_fraction(&shadow.maps[index].1, position, normal)
+            });
+        }
+    }
+}
+
+/// The lit fractions of the [`LANES`] pixels from `first`, served as `served` says, looked up
+/// together (`Lookup::lit_fractions`: the same values as one by one) if all are visible and served
+/// by one map without a blend; `None` otherwise.
+fn lit_block(
+    shadow: &LightShadow,
+    lookups: &[Lookup],
+    image: &EyeImage,
+    first: usize,
+    served: &[Option<Served>; LANES],
+) -> Option<[f64; LANES]> {
+    let [Some(a), Some(b), Some(c), Some(d)] = *served else {
+        return None;
+    };
+    let index = a.index;
+    if [a, b, c, d]
+        .iter()
+        .any(|s| s.index != index || s.blend.is_some())
+    {
+        return None;
+    }
+    let at = |field: &[DVec3]| std::array::from_fn(|k| field[first + k]);
+    let lit = lookups[index].lit_fractions(
+        &shadow.maps[index].1,
+        &at(&image.position),
+        &at(&image.normal),
+    )?;
+    // `Served::combine` with the block's values.
+    let fades = [a, b, c, d];
+    Some(std::array::from_fn(|k| fades[k].combine(|_| lit[k])))
 }

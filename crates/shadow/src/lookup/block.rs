@@ -1,0 +1,405 @@
+//! Four neighbouring pixels looked up in one projective map at once, by the nearest filter with a
+//! slope-scaled bias (shadowlab's default lookup).
+//!
+//! Such a lookup's arithmetic around its one texel fetch — the receiver's window position, and
+//! where the decision needs it the receiver's depth slope (two more windows and a 2 × 2 inverse)
+//! — is a chain of products, divisions and square roots per pixel with nothing
+//! shared between pixels. Four pixels side by side in `wide::f64x4` lanes run each step as one
+//! vector instruction: the divider and the square-root unit take four lanes per instruction, and
+//! the four chains' latencies overlap.
+//!
+//! Each lane performs exactly the operations of the one-pixel functions — `ShadowMapping::window`
+//! (glam's `DMat4 · DVec4` sums its columns from `x` to `w`; a `w` of exactly 1 is divided by,
+//! which gives the dividend's bits, where the one-pixel function skips the division) and
+//! `bias::depth_gradient` (glam's `DVec3::any_orthonormal_pair`, `DMat2::inverse`,
+//! `DMat2 · DVec2`, term by term) — in the same order, and neither Rust nor `wide` contracts a
+//! product and a sum into a fused multiply-add: every lane's decision is the one-pixel lookup's,
+//! bit for bit (the tests compare them over random maps and receivers, degenerate lanes among
+//! them). Lanes that fail a test (a point behind the map's centre, a plane seen edge-on) compute
+//! meaningless numbers before being dropped, as no IEEE operation traps.
+
+use glam::{DMat4, DVec2, DVec3};
+use wide::f64x4;
+
+use super::{Filter, Lookup};
+use crate::bias::{DepthComparison, MAX_SLOPE, SLOPE_STEP, lit_whatever_the_slope};
+use crate::map::ShadowMap;
+
+/// Pixels per block.
+pub(crate) const LANES: usize = 4;
+
+/// One f64 per pixel of a block.
+type Lanes = f64x4;
+
+/// Four 3-vectors, coordinate by coordinate.
+#[derive(Clone, Copy)]
+struct Vectors {
+    x: Lanes,
+    y: Lanes,
+    z: Lanes,
+}
+
+impl Vectors {
+    fn of(v: &[DVec3; LANES]) -> Self {
+        Self {
+            x: f64x4::new(v.map(|v| v.x)),
+            y: f64x4::new(v.map(|v| v.y)),
+            z: f64x4::new(v.map(|v| v.z)),
+        }
+    }
+
+    /// `DVec3::length`, lane by lane.
+    #[inline(always)]
+    fn length(self) -> Lanes {
+        ((self.x * self.x + self.y * self.y) + self.z * self.z).sqrt()
+    }
+
+    /// `self + t·s`, lane by lane (`DVec3 + DVec3 · f64`).
+    #[inline(always)]
+    fn stepped(self, t: Self, s: Lanes) -> Self {
+        Self {
+            x: self.x + t.x * s,
+            y: self.y + t.y * s,
+            z: self.z + t.z * s,
+        }
+    }
+}
+
+/// Window positions of four points through a projective map: `ShadowMapping::window` lane by
+/// lane (module docs), with each lane's `clip.w <= 0` (behind the map's centre: no window).
+#[inline(always)]
+fn windows(m: &DMat4, points: Vectors) -> (Vectors, [bool; LANES]) {
+    let row = |i: usize| {
+        let column = f64x4::splat;
+        ((column(m.x_axis[i]) * points.x + column(m.y_axis[i]) * points.y)
+            + column(m.z_axis[i]) * points.z)
+            + column(m.w_axis[i]) * f64x4::ONE
+    };
+    let w = row(3);
+    let (one, half) = (f64x4::ONE, f64x4::splat(0.5));
+    let window = Vectors {
+        x: (row(0) / w + one) * half,
+        y: (row(1) / w + one) * half,
+        z: (row(2) / w + one) * half,
+    };
+    let w = w.to_array();
+    (window, std::array::from_fn(|k| w[k] <= 0.0))
+}
+
+/// `bias::depth_slope` of four receivers — points `world`, their windows `window`, normals
+/// `normal` — through the projective map `m` of `map` (module docs).
+fn depth_slopes(
+    map: &ShadowMap,
+    m: &DMat4,
+    (world, window): (Vectors, Vectors),
+    normal: &[DVec3; LANES],
+) -> [f64; LANES] {
+    // `DVec3::any_orthonormal_pair` (Duff et al., "Building an Orthonormal Basis, Revisited").
+    let n = Vectors::of(normal);
+    let sign = f64x4::new(normal.map(|n| n.z.signum()));
+    let a = -f64x4::ONE / (sign + n.z);
+    let b = n.x * n.y * a;
+    let t1 = Vectors {
+        x: f64x4::ONE + sign * n.x * n.x * a,
+        y: sign * b,
+        z: -sign * n.x,
+    };
+    let t2 = Vectors {
+        x: b,
+        y: sign + n.y * n.y * a,
+        z: -n.y,
+    };
+    let length = world.length().to_array();
+    let step = f64x4::new(length.map(|l| SLOPE_STEP * l.max(1.0)));
+    let side = f64x4::splat(f64::from(map.resolution));
+    let (p1, behind1) = windows(m, world.stepped(t1, step));
+    let (p2, behind2) = windows(m, world.stepped(t2, step));
+    // In texels, less the receiver's own window position in texels.
+    let (x0, y0) = (window.x * side, window.y * side);
+    let (d1x, d1y, d1z) = (p1.x * side - x0, p1.y * side - y0, p1.z - window.z);
+    let (d2x, d2y, d2z) = (p2.x * side - x0, p2.y * side - y0, p2.z - window.z);
+    let determinant = d1x * d2y - d1y * d2x;
+    let bound = f64x4::splat(f64::EPSILON)
+        * (d1x * d1x + d1y * d1y).sqrt()
+        * (d2x * d2x + d2y * d2y).sqrt();
+    // (∂z/∂x, ∂z/∂y) = J⁻ᵀ·(dz1, dz2), glam's inverse: the adjugate times 1/det.
+    let inverse = f64x4::ONE / determinant;
+    let gx = (d2y * inverse) * d1z + (d1y * -inverse) * d2z;
+    let gy = (d2x * -inverse) * d1z + (d1x * inverse) * d2z;
+    let [determinant, bound, gx, gy] = [determinant, bound, gx, gy].map(f64x4::to_array);
+    std::array::from_fn(|k| {
+        if behind1[k] || behind2[k] || determinant[k].abs() <= bound[k] {
+            MAX_SLOPE
+        } else {
+            gx[k].abs().max(gy[k].abs()).min(MAX_SLOPE)
+        }
+    })
+}
+
+impl Lookup {
+    /// Whether [`Self::lit_fractions`] reads `map` four points at a time: a nearest lookup with a
+    /// slope-scaled bias (whose slope it finds only where a decision needs it) that reads the
+    /// points themselves (no receiver offset), in a projective map.
+    pub(crate) fn reads_together(&self, map: &ShadowMap) -> bool {
+        matches!(
+            (self.filter, self.bias.comparison),
+            (Filter::Nearest, DepthComparison::SlopeScaled { .. })
+        ) && !self.bias.moves_receiver()
+            && map.setup.mapping.clip_from_world().is_some()
+    }
+
+    /// [`Lookup::lit_fraction`] of four points `world` with normals `normal` in `map`, if this
+    /// lookup [reads them together](Self::reads_together); `None` otherwise. The windows, and the
+    /// slopes where a decision needs one (`Comparison::lit_only_tap`), are found four at a time
+    /// (module docs).
+    pub(crate) fn lit_fractions(
+        &self,
+        map: &ShadowMap,
+        world: &[DVec3; LANES],
+        normal: &[DVec3; LANES],
+    ) -> Option<[f64; LANES]> {
+        let (Filter::Nearest, DepthComparison::SlopeScaled { constant, slope }) =
+            (self.filter, self.bias.comparison)
+        else {
+            return None;
+        };
+        if self.bias.moves_receiver() {
+            return None;
+        }
+        let m = map.setup.mapping.clip_from_world()?;
+        let points = Vectors::of(world);
+        let (window, behind) = windows(&m, points);
+        let [x, y, z] = [window.x, window.y, window.z].map(f64x4::to_array);
+        // Each lane's texel and base, then the slopes only if a lane's decision needs one.
+        let side = f64::from(map.resolution);
+        let undecided: [Option<f64>; LANES] = std::array::from_fn(|k| {
+            if behind[k] {
+                return None;
+            }
+            let (i, j) = map.texel_at(DVec2::new(x[k] * side, y[k] * side))?;
+            let base = map.depth(i, j) + constant;
+            (!lit_whatever_the_slope(base, slope, z[k])).then_some(base)
+        });
+        let mut lit = [1.0; LANES];
+        if undecided.iter().any(Option::is_some) {
+            let slopes = depth_slopes(map, &m, (points, window), normal);
+            for (k, base) in undecided.into_iter().enumerate() {
+                if let Some(base) = base {
+                    let lit_through = z[k] <= base + slope * slopes[k];
+                    lit[k] = if lit_through { 1.0 } else { 0.0 };
+                }
+            }
+        }
+        Some(lit)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::{DMat4, DVec3, DVec4};
+    use shadowlab_raster::DepthFormat;
+    use wide::f64x4;
+
+    use super::{LANES, Vectors, depth_slopes, windows};
+    use crate::bias::{Bias, MAX_SLOPE, depth_slope};
+    use crate::lookup::{Filter, Lookup};
+    use crate::map::ShadowMap;
+    use crate::setup::{LightSetup, ProjectiveMapping, ShadowMapping};
+    use crate::technique::Technique;
+
+    /// A small deterministic generator (SplitMix64, seed given per test).
+    struct SplitMix(u64);
+
+    impl SplitMix {
+        fn unit(&mut self) -> f64 {
+            self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
+            let mut z = self.0;
+            z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+            z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+            f64::from(u32::try_from((z ^ (z >> 31)) >> 32).expect("32 bits")) / 4_294_967_296.0
+        }
+
+        fn range(&mut self, lo: f64, hi: f64) -> f64 {
+            lo + (hi - lo) * self.unit()
+        }
+
+        fn vector(&mut self, half: f64) -> DVec3 {
+            DVec3::new(
+                self.range(-half, half),
+                self.range(-half, half),
+                self.range(-half, half),
+            )
+        }
+    }
+
+    /// A map through `clip_from_world` holding `depths` (a square of them).
+    fn map(clip_from_world: DMat4, depths: &[f64]) -> ShadowMap {
+        let setup = LightSetup {
+            technique: Technique::Uniform,
+            mapping: ShadowMapping::Projective(ProjectiveMapping::new(
+                DMat4::IDENTITY,
+                clip_from_world,
+            )),
+            gamma: 0.0,
+            half_fov: 0.0,
+            warp: None,
+            psm: None,
+            focus_body: Vec::new(),
+        };
+        let resolution = depths.len().isqrt();
+        let resolution = u32::try_from(resolution).expect("a small map");
+        ShadowMap::from_depths(setup, resolution, DepthFormat::F32, depths.to_vec(), None)
+            .expect("a map")
+    }
+
+    /// Round `round`'s map (near 0.4·I, so that most receivers land on it; every third affine)
+    /// holding one of `depths`, and four receivers: points on and off the map and behind its
+    /// centre, normals random, zero, NaN and edge-on.
+    fn case(
+        random: &mut SplitMix,
+        round: usize,
+        depths: &[Vec<f64>],
+    ) -> (ShadowMap, [DVec3; LANES], [DVec3; LANES]) {
+        let perturbed = |random: &mut SplitMix, k: usize| {
+            let mut c = DVec4::new(
+                random.range(-0.1, 0.1),
+                random.range(-0.1, 0.1),
+                random.range(-0.1, 0.1),
+                random.range(-0.1, 0.1),
+            );
+            c[k] += if k == 3 { 1.0 } else { 0.4 };
+            c
+        };
+        let mut m = DMat4::from_cols(
+            perturbed(random, 0),
+            perturbed(random, 1),
+            perturbed(random, 2),
+            perturbed(random, 3),
+        );
+        if round.is_multiple_of(3) {
+            (m.x_axis.w, m.y_axis.w, m.z_axis.w, m.w_axis.w) = (0.0, 0.0, 0.0, 1.0);
+        }
+        let mut world = [DVec3::ZERO; LANES];
+        let mut normal = [DVec3::ZERO; LANES];
+        for k in 0..LANES {
+            world[k] = random.vector(1.2);
+            normal[k] = random.vector(1.0).normalize_or(DVec3::Y);
+            match (round + k) % 9 {
+                0 => normal[k] = DVec3::ZERO,
+                1 => normal[k].x = f64::NAN,
+                2 => normal[k] = DVec3::Z,
+                3 => normal[k] = DVec3::new(0.0, 0.0, -1.0),
+                4 => world[k] *= 40.0,
+                _ => {}
+            }
+        }
+        (map(m, &depths[round % depths.len()]), world, normal)
+    }
+
+    /// Random depths for maps of 16², 100² and 300² texels.
+    fn depths(random: &mut SplitMix) -> Vec<Vec<f64>> {
+        [16, 100, 300]
+            .map(|side: usize| (0..side * side).map(|_| random.range(0.0, 1.0)).collect())
+            .into()
+    }
+
+    /// The windows and slopes of four receivers found together are each receiver's own, to the
+    /// bit (`ShadowMapping::window`, `bias::depth_slope`), on the cases of [`case`].
+    #[test]
+    fn four_windows_and_slopes_are_each_receivers_own() {
+        let mut random = SplitMix(0x5eed_0000_0000_100d);
+        let depths = depths(&mut random);
+        let mut sloped = 0;
+        for round in 0..3000 {
+            let (map, world, normal) = case(&mut random, round, &depths);
+            let m = map.setup.mapping.clip_from_world().expect("projective");
+            let (window, behind) = windows(&m, Vectors::of(&world));
+            let slopes = depth_slopes(&map, &m, (Vectors::of(&world), window), &normal);
+            let [x, y, z] = [window.x, window.y, window.z].map(f64x4::to_array);
+            for k in 0..LANES {
+                let one = map.setup.mapping.window(world[k]);
+                let block = (!behind[k]).then(|| DVec3::new(x[k], y[k], z[k]));
+                assert_eq!(
+                    block.map(|w| w.to_array().map(f64::to_bits)),
+                    one.map(|w| w.to_array().map(f64::to_bits)),
+                    "round {round}, lane {k}"
+                );
+                let Some(one) = one else { continue };
+                let slope = depth_slope(&map, (world[k], one), normal[k]);
+                assert_eq!(
+                    slopes[k].to_bits(),
+                    slope.to_bits(),
+                    "round {round}, lane {k}"
+                );
+                sloped += usize::from(slope > 0.0 && slope < MAX_SLOPE);
+            }
+        }
+        assert!(sloped > 3000, "{sloped}");
+    }
+
+    /// Four pixels looked up together give each pixel's own lookup, to the bit, on the cases of
+    /// [`case`], under slope-scaled biases; other comparisons and filters, and a bias that moves
+    /// the receiver, are not read together. The slope decides some of the lookups.
+    #[test]
+    fn four_pixels_together_are_each_pixel_alone() {
+        let mut random = SplitMix(0x5eed_0000_0000_100c);
+        let biases = [
+            "slope:2,1e-5",
+            "slope:0.5,0.02",
+            "slope:400,0",
+            "constant:1e-3",
+            "receiver-plane",
+            "none",
+        ]
+        .map(|spec| Bias::parse(spec).expect("a bias"));
+        let filters = [Filter::Nearest, Filter::Pcf { size: 3 }];
+        let depths = depths(&mut random);
+        let (mut decided_by_slope, mut shadowed, mut lit) = (0, 0, 0);
+        for round in 0..600 {
+            let (map, world, normal) = case(&mut random, round, &depths);
+            for bias in &biases {
+                for filter in filters {
+                    let lookup = Lookup::new(*bias, filter);
+                    let Some(block) = lookup.lit_fractions(&map, &world, &normal) else {
+                        assert!(!lookup.reads_together(&map), "{bias}, {filter:?}");
+                        continue;
+                    };
+                    assert!(lookup.reads_together(&map));
+                    for k in 0..LANES {
+                        let one = lookup.lit_fraction(&map, world[k], normal[k]);
+                        assert_eq!(
+                            block[k].to_bits(),
+                            one.to_bits(),
+                            "round {round}, {bias}, {filter:?}, lane {k}"
+                        );
+                    }
+                    if filter == Filter::Nearest && bias == &biases[0] {
+                        let flat =
+                            Lookup::new(Bias::parse("slope:0,1e-5").expect("a bias"), filter);
+                        for k in 0..LANES {
+                            let one = lookup.lit_fraction(&map, world[k], normal[k]);
+                            decided_by_slope +=
+                                usize::from(one != flat.lit_fraction(&map, world[k], normal[k]));
+                            shadowed += usize::from(one == 0.0);
+                            lit += usize::from(one == 1.0);
+                        }
+                    }
+                }
+            }
+        }
+        assert!(
+            decided_by_slope > 20 && shadowed > 300 && lit > 300,
+            "{decided_by_slope} {shadowed} {lit}"
+        );
+        let moved = Lookup::new(
+            Bias::parse("slope:2,1e-5+normal:1").expect("a bias"),
+            Filter::Nearest,
+        );
+        let map = map(DMat4::IDENTITY, &depths[0]);
+        assert!(
+            moved
+                .lit_fractions(&map, &[DVec3::ZERO; LANES], &[DVec3::Y; LANES])
+                .is_none()
+        );
+    }
+}
