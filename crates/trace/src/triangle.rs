@@ -43,6 +43,8 @@
 //! the bit as the one-triangle test's: only the exact-sign fallback and the clamp, rare, run per
 //! lane.
 
+use wide::f64x4;
+
 use crate::ray::PreparedRay;
 
 /// A stored triangle: `p0.x, p0.y, p0.z, p1.x, …, p2.z`.
@@ -208,6 +210,77 @@ pub(crate) fn intersect_block<const KZ: usize>(
     false
 }
 
+/// Rays per [`intersect_rays`] call.
+pub(crate) const RAYS: usize = 4;
+
+/// [`cross`] of four lanes: the products and their difference side by side, the exact fallback
+/// only for lanes where the difference is zero.
+#[inline(always)]
+fn cross_lanes(ax: f64x4, ay: f64x4, bx: f64x4, by: f64x4) -> f64x4 {
+    let (p, q) = (ax * by, ay * bx);
+    let d = p - q;
+    let lanes = d.to_array();
+    if !lanes.contains(&0.0) {
+        return d;
+    }
+    let [ax, ay, bx, by] = [ax, ay, bx, by].map(f64x4::to_array);
+    f64x4::new(std::array::from_fn(|k| {
+        if lanes[k] == 0.0 {
+            cross(ax[k], ay[k], bx[k], by[k])
+        } else {
+            lanes[k]
+        }
+    }))
+}
+
+/// [`intersect`] of four rays sharing their dominant axis `KZ` against one triangle, the rays in
+/// lanes: each lane performs [`watertight`]'s operations in its order (the sheared vertices, the
+/// three edge functions with their exact signs, the determinant, `t`, `u` and `v`: the divisions
+/// of four rays in one instruction each), then [`intersect`]'s clamp for the lanes that hit — the
+/// same `(t, u, v)` as [`intersect`] for each ray, bit for bit.
+#[inline(always)]
+pub(crate) fn intersect_rays<const KZ: usize>(
+    rays: [&PreparedRay; RAYS],
+    triangle: &TriangleVertices,
+) -> [Option<(f64, f64, f64)>; RAYS] {
+    let (kx, ky) = ((KZ + 1) % 3, (KZ + 2) % 3);
+    let lanes = |f: fn(&PreparedRay) -> f64| f64x4::new(rays.map(f));
+    let (ox, oy, oz) = (
+        lanes(|r| r.origin[(KZ + 1) % 3]),
+        lanes(|r| r.origin[(KZ + 2) % 3]),
+        lanes(|r| r.origin[KZ]),
+    );
+    let (sx, sy, sz) = (
+        lanes(|r| r.shear[0]),
+        lanes(|r| r.shear[1]),
+        lanes(|r| r.shear[2]),
+    );
+    let sheared = |i: usize| {
+        let x = f64x4::splat(triangle[3 * i + kx]) - ox;
+        let y = f64x4::splat(triangle[3 * i + ky]) - oy;
+        let z = f64x4::splat(triangle[3 * i + KZ]) - oz;
+        (x - sx * z, y - sy * z, z)
+    };
+    let (ax, ay, az) = sheared(0);
+    let (bx, by, bz) = sheared(1);
+    let (cx, cy, cz) = sheared(2);
+    let u = cross_lanes(cx, cy, bx, by);
+    let v = cross_lanes(ax, ay, cx, cy);
+    let w = cross_lanes(bx, by, ax, ay);
+    let det = u + v + w;
+    let t = (u * (sz * az) + v * (sz * bz) + w * (sz * cz)) / det;
+    let (bu, bv) = (v / det, w / det);
+    let [u, v, w, det, t, bu, bv] = [u, v, w, det, t, bu, bv].map(f64x4::to_array);
+    std::array::from_fn(|k| {
+        let negative = u[k] < 0.0 || v[k] < 0.0 || w[k] < 0.0;
+        let positive = u[k] > 0.0 || v[k] > 0.0 || w[k] > 0.0;
+        if (negative && positive) || det[k] == 0.0 {
+            return None;
+        }
+        Some((clamp(rays[k], triangle, t[k])?, bu[k], bv[k]))
+    })
+}
+
 /// The smallest box holding the triangle: `(lo, hi)`.
 #[inline]
 pub(crate) fn bounds(triangle: &TriangleVertices) -> ([f64; 3], [f64; 3]) {
@@ -254,4 +327,122 @@ fn clamp(ray: &PreparedRay, triangle: &TriangleVertices, t: f64) -> Option<f64> 
         return None;
     }
     Some(t.max(near).min(far))
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::DVec3;
+
+    use super::{RAYS, TriangleVertices, intersect, intersect_rays};
+    use crate::ray::{PreparedRay, Ray};
+
+    /// A small deterministic generator (SplitMix64, seed given per test).
+    struct SplitMix(u64);
+
+    impl SplitMix {
+        fn unit(&mut self) -> f64 {
+            self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
+            let mut z = self.0;
+            z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+            z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+            f64::from(u32::try_from((z ^ (z >> 31)) >> 32).expect("32 bits")) / 4_294_967_296.0
+        }
+
+        fn range(&mut self, lo: f64, hi: f64) -> f64 {
+            lo + (hi - lo) * self.unit()
+        }
+
+        fn vector(&mut self, half: f64) -> DVec3 {
+            DVec3::new(
+                self.range(-half, half),
+                self.range(-half, half),
+                self.range(-half, half),
+            )
+        }
+
+        /// A point with small integer coordinates: rays between such points meet edges and
+        /// vertices exactly, where the edge functions are zero and their exact signs decide.
+        fn lattice(&mut self) -> DVec3 {
+            self.vector(3.0).round()
+        }
+    }
+
+    /// Four rays against one triangle, in lanes, give each ray's own [`intersect`], to the bit:
+    /// random and lattice triangles, rays parallel (as a grid casts them) and nearly so, aimed at
+    /// random points, at the vertices and at the edges' midpoints, and lying in the triangle's
+    /// plane.
+    #[test]
+    fn four_rays_in_lanes_are_each_rays_own() {
+        let mut random = SplitMix(0x5eed_0000_0000_07a1);
+        let (mut hits, mut misses) = (0, 0);
+        for round in 0..20_000_usize {
+            let lattice = round % 2 == 0;
+            let vertex = |random: &mut SplitMix| {
+                if lattice {
+                    random.lattice()
+                } else {
+                    random.vector(2.0)
+                }
+            };
+            let p = [
+                vertex(&mut random),
+                vertex(&mut random),
+                vertex(&mut random),
+            ];
+            let triangle: TriangleVertices = std::array::from_fn(|c| p[c / 3][c % 3]);
+            let direction = if lattice {
+                random.lattice() + DVec3::new(0.0, 0.0, 4.0)
+            } else {
+                random.vector(1.0)
+            };
+            if direction == DVec3::ZERO {
+                continue;
+            }
+            let rays: Vec<PreparedRay> = (0..RAYS)
+                .map(|k| {
+                    let target = match (round + k) % 6 {
+                        0 => p[k % 3],
+                        1 => (p[k % 3] + p[(k + 1) % 3]) * 0.5,
+                        2 => p[0] + (p[1] - p[0]) * random.unit() + (p[2] - p[0]) * random.unit(),
+                        _ => vertex(&mut random),
+                    };
+                    let d = match round % 5 {
+                        0 => direction + random.vector(1e-9),
+                        // In the triangle's plane.
+                        1 if p[1] != p[0] => p[1] - p[0],
+                        _ => direction,
+                    };
+                    let ray = Ray::new(target - d * random.range(1.0, 3.0).round(), d)
+                        .expect("a valid ray");
+                    PreparedRay::new(&ray, 8.0).expect("a valid ray")
+                })
+                .collect();
+            let kz = rays[0].kz;
+            if rays.iter().any(|ray| ray.kz != kz) {
+                continue;
+            }
+            let lanes: [&PreparedRay; RAYS] = std::array::from_fn(|k| &rays[k]);
+            let together = match kz {
+                0 => intersect_rays::<0>(lanes, &triangle),
+                1 => intersect_rays::<1>(lanes, &triangle),
+                _ => intersect_rays::<2>(lanes, &triangle),
+            };
+            for (k, ray) in rays.iter().enumerate() {
+                let one = match kz {
+                    0 => intersect::<0>(ray, &triangle),
+                    1 => intersect::<1>(ray, &triangle),
+                    _ => intersect::<2>(ray, &triangle),
+                };
+                let bits =
+                    |hit: Option<(f64, f64, f64)>| hit.map(|(t, u, v)| [t, u, v].map(f64::to_bits));
+                assert_eq!(bits(together[k]), bits(one), "round {round}, ray {k}");
+                if one.is_some() {
+                    hits += 1;
+                } else {
+                    misses += 1;
+                }
+            }
+        }
+        assert!(hits > 10_000 && misses > 10_000, "{hits} {misses}");
+    }
 }

@@ -46,7 +46,7 @@ use rayon::prelude::*;
 
 use crate::error::TraceError;
 use crate::ray::{Hit, PreparedRay, Ray};
-use crate::triangle::{self, TriangleVertices};
+use crate::triangle::{self, RAYS, TriangleVertices};
 
 use super::{Bvh, check_range, vertices};
 
@@ -498,32 +498,63 @@ impl Bvh {
                 let (a_lo, a_hi) = (a_lo - slack, a_hi + slack);
                 let start = count_below(along, a_lo, false);
                 let end = count_below(along, a_hi, true);
-                for k in first + start..first + end {
+                // Four rays at a time against the triangle where they share their dominant axis
+                // (`triangle::intersect_rays`: each ray's own answer), one by one elsewhere.
+                let (mut k, end) = (first + start, first + end);
+                while k < end {
+                    let id = image.id;
+                    if k + RAYS <= end {
+                        let rays: [&PreparedRay; RAYS] =
+                            std::array::from_fn(|i| &rows.prepared[k + i]);
+                        if rays.iter().all(|ray| ray.kz == rays[0].kz) {
+                            let found = match rays[0].kz {
+                                0 => triangle::intersect_rays::<0>(rays, &image.stored),
+                                1 => triangle::intersect_rays::<1>(rays, &image.stored),
+                                _ => triangle::intersect_rays::<2>(rays, &image.stored),
+                            };
+                            for (best, found) in rows.hits[k..k + RAYS].iter_mut().zip(found) {
+                                keep(best, found, id, (t_min, t_max));
+                            }
+                            k += RAYS;
+                            continue;
+                        }
+                    }
                     let ray = &rows.prepared[k];
                     let found = match ray.kz {
                         0 => triangle::intersect::<0>(ray, &image.stored),
                         1 => triangle::intersect::<1>(ray, &image.stored),
                         _ => triangle::intersect::<2>(ray, &image.stored),
                     };
-                    let Some((t, u, v)) = found else { continue };
-                    let id = image.id;
-                    // As in `closest`: a hit must have t < t_max, or beat the best so far by a
-                    // smaller t, or an equal t and a smaller index.
-                    let wins = match &rows.hits[k] {
-                        None => t < t_max,
-                        Some(best) => t < best.t || (t == best.t && id < best.triangle),
-                    };
-                    if t_min < t && wins {
-                        rows.hits[k] = Some(Hit {
-                            t,
-                            triangle: id,
-                            u,
-                            v,
-                        });
-                    }
+                    keep(&mut rows.hits[k], found, id, (t_min, t_max));
+                    k += 1;
                 }
             }
         }
+    }
+}
+
+/// Keeps `found`, a ray's hit of triangle `id`, in `best` if it wins by the tree's rule (as in
+/// `closest`): `t` in `(t_min, t_max)`, and a smaller `t` than the best so far, or an equal `t` and
+/// a smaller index.
+#[inline(always)]
+fn keep(
+    best: &mut Option<Hit>,
+    found: Option<(f64, f64, f64)>,
+    id: u32,
+    (t_min, t_max): (f64, f64),
+) {
+    let Some((t, u, v)) = found else { return };
+    let wins = match best {
+        None => t < t_max,
+        Some(best) => t < best.t || (t == best.t && id < best.triangle),
+    };
+    if t_min < t && wins {
+        *best = Some(Hit {
+            t,
+            triangle: id,
+            u,
+            v,
+        });
     }
 }
 
