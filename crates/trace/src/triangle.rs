@@ -335,36 +335,12 @@ mod tests {
 
     use super::{RAYS, TriangleVertices, intersect, intersect_rays};
     use crate::ray::{PreparedRay, Ray};
+    use crate::test_random::SplitMix;
 
-    /// A small deterministic generator (SplitMix64, seed given per test).
-    struct SplitMix(u64);
-
-    impl SplitMix {
-        fn unit(&mut self) -> f64 {
-            self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-            let mut z = self.0;
-            z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-            z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-            f64::from(u32::try_from((z ^ (z >> 31)) >> 32).expect("32 bits")) / 4_294_967_296.0
-        }
-
-        fn range(&mut self, lo: f64, hi: f64) -> f64 {
-            lo + (hi - lo) * self.unit()
-        }
-
-        fn vector(&mut self, half: f64) -> DVec3 {
-            DVec3::new(
-                self.range(-half, half),
-                self.range(-half, half),
-                self.range(-half, half),
-            )
-        }
-
-        /// A point with small integer coordinates: rays between such points meet edges and
-        /// vertices exactly, where the edge functions are zero and their exact signs decide.
-        fn lattice(&mut self) -> DVec3 {
-            self.vector(3.0).round()
-        }
+    /// A point with small integer coordinates: rays between such points meet edges and vertices
+    /// exactly, where the edge functions are zero and their exact signs decide.
+    fn lattice_point(random: &mut SplitMix) -> DVec3 {
+        random.vector(3.0).round()
     }
 
     /// Four rays against one triangle, in lanes, give each ray's own [`intersect`], to the bit:
@@ -379,7 +355,7 @@ mod tests {
             let lattice = round % 2 == 0;
             let vertex = |random: &mut SplitMix| {
                 if lattice {
-                    random.lattice()
+                    lattice_point(random)
                 } else {
                     random.vector(2.0)
                 }
@@ -391,7 +367,7 @@ mod tests {
             ];
             let triangle: TriangleVertices = std::array::from_fn(|c| p[c / 3][c % 3]);
             let direction = if lattice {
-                random.lattice() + DVec3::new(0.0, 0.0, 4.0)
+                lattice_point(&mut random) + DVec3::new(0.0, 0.0, 4.0)
             } else {
                 random.vector(1.0)
             };

@@ -228,31 +228,7 @@ mod tests {
 
     use super::{LANES, footprint_block};
     use crate::aliasing::{Footprint, Prepared, Viewer, footprint_of, local};
-
-    /// A small deterministic generator (SplitMix64, seed given per test).
-    struct SplitMix(u64);
-
-    impl SplitMix {
-        fn unit(&mut self) -> f64 {
-            self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-            let mut z = self.0;
-            z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-            z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-            f64::from(u32::try_from((z ^ (z >> 31)) >> 32).expect("32 bits")) / 4_294_967_296.0
-        }
-
-        fn range(&mut self, lo: f64, hi: f64) -> f64 {
-            lo + (hi - lo) * self.unit()
-        }
-
-        fn vector(&mut self, half: f64) -> DVec3 {
-            DVec3::new(
-                self.range(-half, half),
-                self.range(-half, half),
-                self.range(-half, half),
-            )
-        }
-    }
+    use crate::test_random::SplitMix;
 
     /// The same bits, or both undefined.
     fn same(block: Option<Footprint>, one: Option<Footprint>) -> bool {

@@ -380,31 +380,7 @@ mod tests {
     use super::{PACKET, Packet};
     use crate::build::{Aabb, Lanes, Node4};
     use crate::ray::{PreparedRay, Ray};
-
-    /// A small deterministic generator (SplitMix64).
-    struct Rng(u64);
-
-    impl Rng {
-        fn unit(&mut self) -> f64 {
-            self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-            let mut z = self.0;
-            z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-            z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-            f64::from(u32::try_from((z ^ (z >> 31)) >> 32).expect("32 bits")) / 4_294_967_296.0
-        }
-
-        fn range(&mut self, lo: f64, hi: f64) -> f64 {
-            lo + (hi - lo) * self.unit()
-        }
-
-        fn point(&mut self, half: f64) -> DVec3 {
-            DVec3::new(
-                self.range(-half, half),
-                self.range(-half, half),
-                self.range(-half, half),
-            )
-        }
-    }
+    use crate::test_random::SplitMix;
 
     fn prepared(origin: DVec3, direction: DVec3) -> PreparedRay {
         PreparedRay::new(&Ray::new(origin, direction).expect("valid"), 4.0).expect("valid")
@@ -437,7 +413,7 @@ mod tests {
     /// random packets (directions jittered around one, origins spread) against random boxes.
     #[test]
     fn the_packet_interval_bounds_every_ray() {
-        let mut rng = Rng(0x7ACE_0B02);
+        let mut rng = SplitMix(0x7ACE_0B02);
         let mut packet = Packet::default();
         let mut entered = 0;
         for _ in 0..2000 {
@@ -445,14 +421,14 @@ mod tests {
             let spread = rng.range(0.0, 0.5);
             let rays: Vec<PreparedRay> = (0..PACKET)
                 .map(|_| {
-                    let jitter = d + rng.point(0.2);
-                    prepared(DVec3::new(0.0, 3.0, 1.0) + rng.point(spread), jitter)
+                    let jitter = d + rng.vector(0.2);
+                    prepared(DVec3::new(0.0, 3.0, 1.0) + rng.vector(spread), jitter)
                 })
                 .collect();
             assert!(packet.set(&rays));
             let mut node = Node4::EMPTY;
             for lane in 0..4 {
-                let (a, b) = (rng.point(2.0), rng.point(2.0));
+                let (a, b) = (rng.vector(2.0), rng.vector(2.0));
                 let (lo, hi) = (a.min(b), a.max(b));
                 let bounds = Aabb {
                     lo: Lanes([lo.x, lo.y, lo.z, 0.0]),
