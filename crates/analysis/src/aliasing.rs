@@ -332,15 +332,15 @@ pub fn footprints_served(
         .collect();
     let viewer = Viewer::new(camera);
     let pixels = eye.triangle.len();
-    // The map serving a pixel, if it is visible.
+    // The index of the map serving a pixel, if it is visible.
     let map_of = |pixel: usize| {
         if eye.triangle[pixel] == NO_TRIANGLE {
             return None;
         }
-        mappings.get(serving(pixel)?)
+        serving(pixel).filter(|&index| index < mappings.len())
     };
     let one = |pixel: usize| {
-        let (mapping, resolution) = map_of(pixel)?;
+        let (mapping, resolution) = &mappings[map_of(pixel)?];
         footprint_of(&local(
             mapping,
             *resolution,
@@ -354,11 +354,10 @@ pub fn footprints_served(
         .map(|block| {
             let first = block * LANES;
             if first + LANES <= pixels {
-                let served: [_; LANES] = std::array::from_fn(|k| map_of(first + k));
-                if let Some((Prepared::Projective(m), resolution)) = served[0]
-                    && served
-                        .iter()
-                        .all(|s| s.is_some_and(|s| std::ptr::eq(s, served[0].expect("some"))))
+                let served: [Option<usize>; LANES] = std::array::from_fn(|k| map_of(first + k));
+                if let Some(index) = served[0]
+                    && served.iter().all(|&s| s == Some(index))
+                    && let (Prepared::Projective(m), resolution) = &mappings[index]
                 {
                     let at = |field: &[DVec3]| std::array::from_fn(|k| field[first + k]);
                     return footprint_block(

@@ -674,11 +674,9 @@ fn lit_block(
     let [Some(a), Some(b), Some(c), Some(d)] = *served else {
         return None;
     };
+    let served = [a, b, c, d];
     let index = a.index;
-    if [a, b, c, d]
-        .iter()
-        .any(|s| s.index != index || s.blend.is_some())
-    {
+    if served.iter().any(|s| s.index != index || s.blend.is_some()) {
         return None;
     }
     let at = |field: &[DVec3]| std::array::from_fn(|k| field[first + k]);
@@ -687,7 +685,6 @@ fn lit_block(
         &at(&image.position),
         &at(&image.normal),
     )?;
-    // `Served::combine` with the block's values.
-    let fades = [a, b, c, d];
-    Some(std::array::from_fn(|k| fades[k].combine(|_| lit[k])))
+    // `Served::combine` (no blend: the one map's value, faded) with the block's values.
+    Some(std::array::from_fn(|k| served[k].combine(|_| lit[k])))
 }
