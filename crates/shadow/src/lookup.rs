@@ -507,17 +507,7 @@ impl Lookup {
         };
         match self.filter {
             Filter::Nearest => test(DVec2::ZERO, true),
-            Filter::Pcf { size } => {
-                let half = 0.5 * f64::from(size.saturating_sub(1));
-                let mut lit = 0.0;
-                for b in 0..size {
-                    for a in 0..size {
-                        let offset = DVec2::new(f64::from(a) - half, f64::from(b) - half);
-                        lit += test(offset, false);
-                    }
-                }
-                lit / f64::from(size * size)
-            }
+            Filter::Pcf { size } => pcf_mean(size, |offset| test(offset, false)),
             Filter::Disk { .. } => {
                 let lit: f64 = self.taps.iter().map(|tap| test(*tap, false)).sum();
                 lit / self.taps.len() as f64
@@ -525,6 +515,20 @@ impl Lookup {
             Filter::Vsm { .. } | Filter::Moments { .. } => unreachable!("read above"),
         }
     }
+}
+
+/// The mean of `test(offset)` over the `size × size` taps of PCF, at `offset = (a − h, b − h)`
+/// texels from the point, `a, b < size`, `h = (size − 1)/2`, row by row.
+#[inline(always)]
+pub(crate) fn pcf_mean(size: u32, mut test: impl FnMut(DVec2) -> f64) -> f64 {
+    let half = 0.5 * f64::from(size.saturating_sub(1));
+    let mut lit = 0.0;
+    for b in 0..size {
+        for a in 0..size {
+            lit += test(DVec2::new(f64::from(a) - half, f64::from(b) - half));
+        }
+    }
+    lit / f64::from(size * size)
 }
 
 /// A filterable map's lit fraction: `lit` of the [`Footprint`] of the `size × size` texels around

@@ -1,9 +1,9 @@
-//! Four neighbouring pixels looked up in one projective map at once, by the nearest filter with a
-//! slope-scaled bias (shadowlab's default lookup).
+//! Four neighbouring pixels looked up in one projective map at once, by the nearest filter or PCF
+//! with a slope-scaled bias (shadowlab's default lookup, and its PCF).
 //!
-//! Such a lookup's arithmetic around its one texel fetch — the receiver's window position, and
-//! where the decision needs it the receiver's depth slope (two more windows and a 2 × 2 inverse)
-//! — is a chain of products, divisions and square roots per pixel with nothing
+//! Such a lookup's arithmetic around its texel fetches — the receiver's window position, and the
+//! receiver's depth slope (two more windows and a 2 × 2 inverse; for the nearest filter only where
+//! the decision needs it) — is a chain of products, divisions and square roots per pixel with nothing
 //! shared between pixels. Four pixels side by side in `wide::f64x4` lanes run each step as one
 //! vector instruction: the divider and the square-root unit take four lanes per instruction, and
 //! the four chains' latencies overlap.
@@ -21,7 +21,7 @@
 use glam::{DMat4, DVec2, DVec3};
 use wide::f64x4;
 
-use super::{Filter, Lookup};
+use super::{Filter, Lookup, pcf_mean};
 use crate::bias::{DepthComparison, MAX_SLOPE, SLOPE_STEP, lit_whatever_the_slope};
 use crate::map::ShadowMap;
 
@@ -137,29 +137,35 @@ fn depth_slopes(
 }
 
 impl Lookup {
-    /// Whether [`Self::lit_fractions`] reads `map` four points at a time: a nearest lookup with a
-    /// slope-scaled bias (whose slope it finds only where a decision needs it) that reads the
-    /// points themselves (no receiver offset), in a projective map.
+    /// Whether [`Self::lit_fractions`] reads `map` four points at a time: a nearest or PCF lookup
+    /// with a slope-scaled bias that reads the points themselves (no receiver offset), in a
+    /// projective map.
     pub(crate) fn reads_together(&self, map: &ShadowMap) -> bool {
         matches!(
             (self.filter, self.bias.comparison),
-            (Filter::Nearest, DepthComparison::SlopeScaled { .. })
+            (
+                Filter::Nearest | Filter::Pcf { .. },
+                DepthComparison::SlopeScaled { .. }
+            )
         ) && !self.bias.moves_receiver()
             && map.setup.mapping.clip_from_world().is_some()
     }
 
     /// [`Lookup::lit_fraction`] of four points `world` with normals `normal` in `map`, if this
-    /// lookup [reads them together](Self::reads_together); `None` otherwise. The windows, and the
-    /// slopes where a decision needs one (`Comparison::lit_only_tap`), are found four at a time
-    /// (module docs).
+    /// lookup [reads them together](Self::reads_together); `None` otherwise. The windows and the
+    /// slopes — PCF's for every lane, as `Comparison::new` finds them; the nearest filter's only
+    /// where a lane's decision needs one, as `Comparison::lit_only_tap` — are found four at a time
+    /// (module docs); each lane's taps are then read as one pixel's.
     pub(crate) fn lit_fractions(
         &self,
         map: &ShadowMap,
         world: &[DVec3; LANES],
         normal: &[DVec3; LANES],
     ) -> Option<[f64; LANES]> {
-        let (Filter::Nearest, DepthComparison::SlopeScaled { constant, slope }) =
-            (self.filter, self.bias.comparison)
+        let (
+            filter @ (Filter::Nearest | Filter::Pcf { .. }),
+            DepthComparison::SlopeScaled { constant, slope },
+        ) = (self.filter, self.bias.comparison)
         else {
             return None;
         };
@@ -170,8 +176,24 @@ impl Lookup {
         let points = Vectors::of(world);
         let (window, behind) = windows(&m, points);
         let [x, y, z] = [window.x, window.y, window.z].map(f64x4::to_array);
-        // Each lane's texel and base, then the slopes only if a lane's decision needs one.
         let side = f64::from(map.resolution);
+        if let Filter::Pcf { size } = filter {
+            // Every tap compares with the slope found up front (`Comparison::new`).
+            let slopes = depth_slopes(map, &m, (points, window), normal);
+            return Some(std::array::from_fn(|k| {
+                if behind[k] {
+                    return 1.0;
+                }
+                let centre = DVec2::new(x[k] * side, y[k] * side);
+                pcf_mean(size, |offset| match map.texel_at(centre + offset) {
+                    Some((i, j)) if z[k] <= map.depth(i, j) + constant + slope * slopes[k] => 1.0,
+                    Some(_) => 0.0,
+                    None => 1.0,
+                })
+            }));
+        }
+        // The nearest tap (`Comparison::lit_only_tap`): each lane's texel and base, then the
+        // slopes only if a lane's decision needs one.
         let undecided: [Option<f64>; LANES] = std::array::from_fn(|k| {
             if behind[k] {
                 return None;
@@ -337,9 +359,33 @@ mod tests {
         assert!(sloped > 3000, "{sloped}");
     }
 
+    /// Puts the depth each receiver's texel holds within an ulp or two of the first bias's
+    /// (`slope:2,1e-5`) limit, `z − (1e-5 + 2·slope)`, so that rounding decides the comparison.
+    fn on_the_limit(
+        map: &mut ShadowMap,
+        world: &[DVec3; LANES],
+        normal: &[DVec3; LANES],
+        random: &mut SplitMix,
+    ) {
+        let side = f64::from(map.resolution);
+        for k in 0..LANES {
+            let Some(w) = map.setup.mapping.window(world[k]) else {
+                continue;
+            };
+            let Some((i, j)) = map.texel_at(glam::DVec2::new(w.x * side, w.y * side)) else {
+                continue;
+            };
+            let limit = w.z - (1e-5 + 2.0 * depth_slope(map, (world[k], w), normal[k]));
+            let nudge = (random.unit() * 5.0).floor() - 2.0;
+            #[expect(clippy::cast_possible_truncation, reason = "-2 to 2")]
+            let bits = limit.to_bits().wrapping_add_signed(nudge as i64);
+            map.nearest[j as usize * map.resolution as usize + i as usize] = f64::from_bits(bits);
+        }
+    }
+
     /// Four pixels looked up together give each pixel's own lookup, to the bit, on the cases of
-    /// [`case`], under slope-scaled biases; other comparisons and filters, and a bias that moves
-    /// the receiver, are not read together. The slope decides some of the lookups.
+    /// [`case`], nearest and PCF under slope-scaled biases; other comparisons, and a bias that
+    /// moves the receiver, are not read together. The slope decides some of the lookups.
     #[test]
     fn four_pixels_together_are_each_pixel_alone() {
         let mut random = SplitMix(0x5eed_0000_0000_100c);
@@ -352,11 +398,18 @@ mod tests {
             "none",
         ]
         .map(|spec| Bias::parse(spec).expect("a bias"));
-        let filters = [Filter::Nearest, Filter::Pcf { size: 3 }];
+        let filters = [
+            Filter::Nearest,
+            Filter::Pcf { size: 3 },
+            Filter::Pcf { size: 2 },
+        ];
         let depths = depths(&mut random);
         let (mut decided_by_slope, mut shadowed, mut lit) = (0, 0, 0);
         for round in 0..600 {
-            let (map, world, normal) = case(&mut random, round, &depths);
+            let (mut map, world, normal) = case(&mut random, round, &depths);
+            if round % 2 == 1 {
+                on_the_limit(&mut map, &world, &normal, &mut random);
+            }
             for bias in &biases {
                 for filter in filters {
                     let lookup = Lookup::new(*bias, filter);
