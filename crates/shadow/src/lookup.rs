@@ -508,10 +508,7 @@ impl Lookup {
         match self.filter {
             Filter::Nearest => test(DVec2::ZERO, true),
             Filter::Pcf { size } => pcf_mean(size, |offset| test(offset, false)),
-            Filter::Disk { .. } => {
-                let lit: f64 = self.taps.iter().map(|tap| test(*tap, false)).sum();
-                lit / self.taps.len() as f64
-            }
+            Filter::Disk { .. } => disk_mean(&self.taps, |tap| test(tap, false)),
             Filter::Vsm { .. } | Filter::Moments { .. } => unreachable!("read above"),
         }
     }
@@ -529,6 +526,13 @@ pub(crate) fn pcf_mean(size: u32, mut test: impl FnMut(DVec2) -> f64) -> f64 {
         }
     }
     lit / f64::from(size * size)
+}
+
+/// The mean of `test(tap)` over the jittered disk's `taps` (offsets in texels), in their order.
+#[inline(always)]
+pub(crate) fn disk_mean(taps: &[DVec2], mut test: impl FnMut(DVec2) -> f64) -> f64 {
+    let lit: f64 = taps.iter().map(|&tap| test(tap)).sum();
+    lit / taps.len() as f64
 }
 
 /// A filterable map's lit fraction: `lit` of the [`Footprint`] of the `size × size` texels around

@@ -1,5 +1,5 @@
-//! Four neighbouring pixels looked up in one projective map at once, by the nearest filter or PCF
-//! with a slope-scaled bias (shadowlab's default lookup, and its PCF).
+//! Four neighbouring pixels looked up in one projective map at once, by the nearest filter, PCF or
+//! the jittered disk with a slope-scaled bias (shadowlab's default lookup, and its filters).
 //!
 //! Such a lookup's arithmetic around its texel fetches — the receiver's window position, and the
 //! receiver's depth slope (two more windows and a 2 × 2 inverse; for the nearest filter only where
@@ -21,7 +21,7 @@
 use glam::{DMat4, DVec2, DVec3};
 use wide::f64x4;
 
-use super::{Filter, Lookup, pcf_mean};
+use super::{Filter, Lookup, disk_mean, pcf_mean};
 use crate::bias::{DepthComparison, MAX_SLOPE, SLOPE_STEP, lit_whatever_the_slope};
 use crate::map::ShadowMap;
 
@@ -137,14 +137,14 @@ fn depth_slopes(
 }
 
 impl Lookup {
-    /// Whether [`Self::lit_fractions`] reads `map` four points at a time: a nearest or PCF lookup
-    /// with a slope-scaled bias that reads the points themselves (no receiver offset), in a
+    /// Whether [`Self::lit_fractions`] reads `map` four points at a time: a nearest, PCF or disk
+    /// lookup with a slope-scaled bias that reads the points themselves (no receiver offset), in a
     /// projective map.
     pub(crate) fn reads_together(&self, map: &ShadowMap) -> bool {
         matches!(
             (self.filter, self.bias.comparison),
             (
-                Filter::Nearest | Filter::Pcf { .. },
+                Filter::Nearest | Filter::Pcf { .. } | Filter::Disk { .. },
                 DepthComparison::SlopeScaled { .. }
             )
         ) && !self.bias.moves_receiver()
@@ -153,7 +153,7 @@ impl Lookup {
 
     /// [`Lookup::lit_fraction`] of four points `world` with normals `normal` in `map`, if this
     /// lookup [reads them together](Self::reads_together); `None` otherwise. The windows and the
-    /// slopes — PCF's for every lane, as `Comparison::new` finds them; the nearest filter's only
+    /// slopes — PCF's and the disk's for every lane, as `Comparison::new` finds them; the nearest filter's only
     /// where a lane's decision needs one, as `Comparison::lit_only_tap` — are found four at a time
     /// (module docs); each lane's taps are then read as one pixel's.
     pub(crate) fn lit_fractions(
@@ -163,7 +163,7 @@ impl Lookup {
         normal: &[DVec3; LANES],
     ) -> Option<[f64; LANES]> {
         let (
-            filter @ (Filter::Nearest | Filter::Pcf { .. }),
+            filter @ (Filter::Nearest | Filter::Pcf { .. } | Filter::Disk { .. }),
             DepthComparison::SlopeScaled { constant, slope },
         ) = (self.filter, self.bias.comparison)
         else {
@@ -177,7 +177,7 @@ impl Lookup {
         let (window, behind) = windows(&m, points);
         let [x, y, z] = [window.x, window.y, window.z].map(f64x4::to_array);
         let side = f64::from(map.resolution);
-        if let Filter::Pcf { size } = filter {
+        if filter != Filter::Nearest {
             // Every tap compares with the slope found up front (`Comparison::new`).
             let slopes = depth_slopes(map, &m, (points, window), normal);
             return Some(std::array::from_fn(|k| {
@@ -185,11 +185,15 @@ impl Lookup {
                     return 1.0;
                 }
                 let centre = DVec2::new(x[k] * side, y[k] * side);
-                pcf_mean(size, |offset| match map.texel_at(centre + offset) {
+                let test = |offset: DVec2| match map.texel_at(centre + offset) {
                     Some((i, j)) if z[k] <= map.depth(i, j) + constant + slope * slopes[k] => 1.0,
                     Some(_) => 0.0,
                     None => 1.0,
-                })
+                };
+                match filter {
+                    Filter::Pcf { size } => pcf_mean(size, test),
+                    _ => disk_mean(&self.taps, test),
+                }
             }));
         }
         // The nearest tap (`Comparison::lit_only_tap`): each lane's texel and base, then the
@@ -384,7 +388,7 @@ mod tests {
     }
 
     /// Four pixels looked up together give each pixel's own lookup, to the bit, on the cases of
-    /// [`case`], nearest and PCF under slope-scaled biases; other comparisons, and a bias that
+    /// [`case`], nearest, PCF and disk under slope-scaled biases; other comparisons, and a bias that
     /// moves the receiver, are not read together. The slope decides some of the lookups.
     #[test]
     fn four_pixels_together_are_each_pixel_alone() {
