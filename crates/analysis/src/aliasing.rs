@@ -66,12 +66,13 @@ use rayon::prelude::*;
 use shadowlab_raster::{EyeImage, NO_TRIANGLE};
 use shadowlab_scene::Camera;
 use shadowlab_shadow::homogeneous::quotient;
+use shadowlab_shadow::lanes::LANES;
 use shadowlab_shadow::logarithmic::LogarithmicMap;
 use shadowlab_shadow::paraboloid::ParaboloidMap;
 use shadowlab_shadow::{LightSetup, ShadowMapping};
 
 use crate::exact_sum::ExactSum;
-use block::{LANES, footprint_block};
+use block::footprint_block;
 
 mod block;
 

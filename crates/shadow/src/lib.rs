@@ -43,6 +43,7 @@ mod frame;
 mod gather;
 pub mod homogeneous;
 mod input;
+pub mod lanes;
 pub mod logarithmic;
 mod logarithmic_map;
 mod lookup;

@@ -20,8 +20,6 @@ use shadowlab_params::vsm::ShiftedMoments;
 use crate::bias::{Bias, Comparison, spec_numbers};
 use crate::map::ShadowMap;
 
-pub(crate) use block::LANES;
-
 mod block;
 
 /// How many texels a lookup reads, and how it combines them.

@@ -21,111 +21,16 @@
 use glam::{DMat4, DVec3};
 use wide::f64x4;
 
+use shadowlab_shadow::lanes::{LANES, Vectors};
+
 use super::{Footprint, GRAZING_COS, Viewer};
-
-/// Pixels per block.
-pub(super) const LANES: usize = 4;
-
-/// One f64 per pixel of a block.
-type Lanes = f64x4;
-
-/// Four 3-vectors, coordinate by coordinate.
-#[derive(Clone, Copy)]
-struct Vectors {
-    x: Lanes,
-    y: Lanes,
-    z: Lanes,
-}
-
-impl Vectors {
-    fn of(v: &[DVec3; LANES]) -> Self {
-        Self {
-            x: f64x4::new(v.map(|v| v.x)),
-            y: f64x4::new(v.map(|v| v.y)),
-            z: f64x4::new(v.map(|v| v.z)),
-        }
-    }
-
-    /// `v` in every lane.
-    fn splat(v: DVec3) -> Self {
-        Self {
-            x: f64x4::splat(v.x),
-            y: f64x4::splat(v.y),
-            z: f64x4::splat(v.z),
-        }
-    }
-
-    /// `DVec3::dot`, lane by lane.
-    #[inline(always)]
-    fn dot(self, other: Self) -> Lanes {
-        (self.x * other.x + self.y * other.y) + self.z * other.z
-    }
-
-    /// `DVec3::length`, lane by lane.
-    #[inline(always)]
-    fn length(self) -> Lanes {
-        self.dot(self).sqrt()
-    }
-
-    /// `self − other`, lane by lane.
-    #[inline(always)]
-    fn minus(self, other: Self) -> Self {
-        Self {
-            x: self.x - other.x,
-            y: self.y - other.y,
-            z: self.z - other.z,
-        }
-    }
-
-    /// `self + other`, lane by lane.
-    #[inline(always)]
-    fn plus(self, other: Self) -> Self {
-        Self {
-            x: self.x + other.x,
-            y: self.y + other.y,
-            z: self.z + other.z,
-        }
-    }
-
-    /// `self · s`, lane by lane.
-    #[inline(always)]
-    fn times(self, s: Lanes) -> Self {
-        Self {
-            x: self.x * s,
-            y: self.y * s,
-            z: self.z * s,
-        }
-    }
-
-    /// `DVec3::cross`, lane by lane.
-    #[inline(always)]
-    fn cross(self, other: Self) -> Self {
-        Self {
-            x: self.y * other.z - other.y * self.z,
-            y: self.z * other.x - other.z * self.x,
-            z: self.x * other.y - other.x * self.y,
-        }
-    }
-
-    /// `m · (self, w)`: glam's `DMat4 · DVec4`, the columns summed from `x` to `w`.
-    #[inline(always)]
-    fn transformed(self, m: &DMat4, w: f64) -> [Lanes; 4] {
-        let row = |i: usize| {
-            let column = |c: f64| f64x4::splat(c);
-            ((column(m.x_axis[i]) * self.x + column(m.y_axis[i]) * self.y)
-                + column(m.z_axis[i]) * self.z)
-                + column(m.w_axis[i]) * f64x4::splat(w)
-        };
-        [row(0), row(1), row(2), row(3)]
-    }
-}
 
 /// `At::derivative` of a projective map, in texels: the window coordinates' derivative along
 /// `direction` at the point of clip coordinates `clip`, times `texels`. Divided in every lane,
 /// also where `w = 1`, which the one-pixel function skips (`quotient`): `x / 1 = x`, and one
 /// vector division serves four lanes.
 #[inline(always)]
-fn derivative(m: &DMat4, clip: &[Lanes; 4], direction: Vectors, texels: Lanes) -> [Lanes; 2] {
+fn derivative(m: &DMat4, clip: &[f64x4; 4], direction: Vectors, texels: f64x4) -> [f64x4; 2] {
     let dp = direction.transformed(m, 0.0);
     let w = clip[3];
     let half = f64x4::splat(0.5);
@@ -176,7 +81,7 @@ pub(super) fn footprint_block(
     let cos_beta = ray.dot(n).abs() / ray.length();
     // `footprint_of`: σ_max of J = [[a, b], [c, d]] over |det J|, and the projection factor.
     let (a, b, c, d) = (d1x, d2x, d1y, d2y);
-    let hypot = |x: Lanes, y: Lanes| {
+    let hypot = |x: f64x4, y: f64x4| {
         let (x, y) = (x.to_array(), y.to_array());
         f64x4::new(std::array::from_fn(|k| x[k].hypot(y[k])))
     };

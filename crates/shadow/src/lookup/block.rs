@@ -23,64 +23,19 @@ use wide::f64x4;
 
 use super::{Filter, Lookup, disk_mean, pcf_mean};
 use crate::bias::{DepthComparison, MAX_SLOPE, SLOPE_STEP, lit_whatever_the_slope};
+use crate::lanes::{LANES, Vectors};
 use crate::map::ShadowMap;
-
-/// Pixels per block.
-pub(crate) const LANES: usize = 4;
-
-/// One f64 per pixel of a block.
-type Lanes = f64x4;
-
-/// Four 3-vectors, coordinate by coordinate.
-#[derive(Clone, Copy)]
-struct Vectors {
-    x: Lanes,
-    y: Lanes,
-    z: Lanes,
-}
-
-impl Vectors {
-    fn of(v: &[DVec3; LANES]) -> Self {
-        Self {
-            x: f64x4::new(v.map(|v| v.x)),
-            y: f64x4::new(v.map(|v| v.y)),
-            z: f64x4::new(v.map(|v| v.z)),
-        }
-    }
-
-    /// `DVec3::length`, lane by lane.
-    #[inline(always)]
-    fn length(self) -> Lanes {
-        ((self.x * self.x + self.y * self.y) + self.z * self.z).sqrt()
-    }
-
-    /// `self + t·s`, lane by lane (`DVec3 + DVec3 · f64`).
-    #[inline(always)]
-    fn stepped(self, t: Self, s: Lanes) -> Self {
-        Self {
-            x: self.x + t.x * s,
-            y: self.y + t.y * s,
-            z: self.z + t.z * s,
-        }
-    }
-}
 
 /// Window positions of four points through a projective map: `ShadowMapping::window` lane by
 /// lane (module docs), with each lane's `clip.w <= 0` (behind the map's centre: no window).
 #[inline(always)]
 fn windows(m: &DMat4, points: Vectors) -> (Vectors, [bool; LANES]) {
-    let row = |i: usize| {
-        let column = f64x4::splat;
-        ((column(m.x_axis[i]) * points.x + column(m.y_axis[i]) * points.y)
-            + column(m.z_axis[i]) * points.z)
-            + column(m.w_axis[i]) * f64x4::ONE
-    };
-    let w = row(3);
+    let [x, y, z, w] = points.transformed(m, 1.0);
     let (one, half) = (f64x4::ONE, f64x4::splat(0.5));
     let window = Vectors {
-        x: (row(0) / w + one) * half,
-        y: (row(1) / w + one) * half,
-        z: (row(2) / w + one) * half,
+        x: (x / w + one) * half,
+        y: (y / w + one) * half,
+        z: (z / w + one) * half,
     };
     let w = w.to_array();
     (window, std::array::from_fn(|k| w[k] <= 0.0))
@@ -112,8 +67,8 @@ fn depth_slopes(
     let length = world.length().to_array();
     let step = f64x4::new(length.map(|l| SLOPE_STEP * l.max(1.0)));
     let side = f64x4::splat(f64::from(map.resolution));
-    let (p1, behind1) = windows(m, world.stepped(t1, step));
-    let (p2, behind2) = windows(m, world.stepped(t2, step));
+    let (p1, behind1) = windows(m, world.plus(t1.times(step)));
+    let (p2, behind2) = windows(m, world.plus(t2.times(step)));
     // In texels, less the receiver's own window position in texels.
     let (x0, y0) = (window.x * side, window.y * side);
     let (d1x, d1y, d1z) = (p1.x * side - x0, p1.y * side - y0, p1.z - window.z);
