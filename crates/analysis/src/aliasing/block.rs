@@ -1,5 +1,5 @@
-//! A pixel's footprint ([`footprint_of`](super::footprint_of) of [`local`](super::local)) through a projective map,
-//! for four pixels at once.
+//! A pixel's footprint ([`footprint_of`](super::footprint_of) of [`local`](super::local)) through a
+//! projective map, for four pixels at once.
 //!
 //! The footprint's arithmetic is a long chain of products, divisions and square roots per pixel
 //! (three derivatives, each a division; a normalisation, two projections onto the plane, two
@@ -9,19 +9,19 @@
 //! four chains' latencies overlap.
 //!
 //! Each lane performs exactly the operations of [`local`](super::local) on its pixel, in the same
-//! order (the two `hypot`s are the C library's, lane by lane) — glam's `DVec3::dot` is `(x·x′ + y·y′) + z·z′`, `DMat4 · DVec4` sums its columns from
-//! `x` to `w`, the homogeneous `w` of a direction multiplies the last column by 0 and adds it — and
-//! neither Rust nor `wide` contracts a product and a sum into a fused multiply-add, so every lane
-//! gives the same bits as the one-pixel function (the tests compare them over random and
-//! degenerate input). The tests the one-pixel function makes one at a time — a normal of zero
-//! length, a point behind the eye or the map's centre, a plane through the eye, a result that is
-//! not finite — are made for all lanes at the end; a lane that fails one computes meaningless
-//! numbers before being dropped, as no IEEE operation traps.
+//! order (the two `hypot`s are the C library's, lane by lane) — glam's `DVec3::dot` is
+//! `(x·x′ + y·y′) + z·z′`, `DMat4 · DVec4` sums its columns from `x` to `w`, the homogeneous `w`
+//! of a direction multiplies the last column by 0 and adds it — and neither Rust nor `wide`
+//! contracts a product and a sum into a fused multiply-add, so every lane gives the same bits as
+//! the one-pixel function (the tests compare them over random and degenerate input). The tests
+//! the one-pixel function makes one at a time — a normal of zero length, a point behind the eye or
+//! the map's centre, a plane through the eye, a result that is not finite — are made for all lanes
+//! at the end; a lane that fails one computes meaningless numbers before being dropped, as no IEEE
+//! operation traps.
 
 use glam::{DMat4, DVec3};
-use wide::f64x4;
-
 use shadowlab_shadow::lanes::{LANES, Vectors};
+use wide::f64x4;
 
 use super::{Footprint, GRAZING_COS, Viewer};
 
@@ -38,8 +38,8 @@ fn derivative(m: &DMat4, clip: &[f64x4; 4], direction: Vectors, texels: f64x4) -
     [d(0), d(1)]
 }
 
-/// [`footprint_of`](super::footprint_of)`(`[`local`](super::local)`)` through the projective map `m` (world → clip) at
-/// four points with their normals, lane by lane (module docs).
+/// [`footprint_of`](super::footprint_of)`(`[`local`](super::local)`)` through the projective map
+/// `m` (world → clip) at four points with their normals, lane by lane (module docs).
 pub(super) fn footprint_block(
     m: &DMat4,
     resolution: u32,

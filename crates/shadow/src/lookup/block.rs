@@ -3,10 +3,10 @@
 //!
 //! Such a lookup's arithmetic around its texel fetches — the receiver's window position, and the
 //! receiver's depth slope (two more windows and a 2 × 2 inverse; for the nearest filter only where
-//! the decision needs it) — is a chain of products, divisions and square roots per pixel with nothing
-//! shared between pixels. Four pixels side by side in `wide::f64x4` lanes run each step as one
-//! vector instruction: the divider and the square-root unit take four lanes per instruction, and
-//! the four chains' latencies overlap.
+//! the decision needs it) — is a chain of products, divisions and square roots per pixel with
+//! nothing shared between pixels. Four pixels side by side in `wide::f64x4` lanes run each step as
+//! one vector instruction: the divider and the square-root unit take four lanes per instruction,
+//! and the four chains' latencies overlap.
 //!
 //! Each lane performs exactly the operations of the one-pixel functions — `ShadowMapping::window`
 //! (glam's `DMat4 · DVec4` sums its columns from `x` to `w`; a `w` of exactly 1 is divided by,
@@ -108,31 +108,28 @@ impl Lookup {
 
     /// [`Lookup::lit_fraction`] of four points `world` with normals `normal` in `map`, if this
     /// lookup [reads them together](Self::reads_together); `None` otherwise. The windows and the
-    /// slopes — PCF's and the disk's for every lane, as `Comparison::new` finds them; the nearest filter's only
-    /// where a lane's decision needs one, as `Comparison::lit_only_tap` — are found four at a time
-    /// (module docs); each lane's taps are then read as one pixel's.
+    /// slopes — PCF's and the disk's for every lane, as `Comparison::new` finds them; the nearest
+    /// filter's only where a lane's decision needs one, as `Comparison::lit_only_tap` — are found
+    /// four at a time (module docs); each lane's taps are then read as one pixel's.
     pub(crate) fn lit_fractions(
         &self,
         map: &ShadowMap,
         world: &[DVec3; LANES],
         normal: &[DVec3; LANES],
     ) -> Option<[f64; LANES]> {
-        let (
-            filter @ (Filter::Nearest | Filter::Pcf { .. } | Filter::Disk { .. }),
-            DepthComparison::SlopeScaled { constant, slope },
-        ) = (self.filter, self.bias.comparison)
+        if !self.reads_together(map) {
+            return None;
+        }
+        let (DepthComparison::SlopeScaled { constant, slope }, Some(m)) =
+            (self.bias.comparison, map.setup.mapping.clip_from_world())
         else {
             return None;
         };
-        if self.bias.moves_receiver() {
-            return None;
-        }
-        let m = map.setup.mapping.clip_from_world()?;
         let points = Vectors::of(world);
         let (window, behind) = windows(&m, points);
         let [x, y, z] = [window.x, window.y, window.z].map(f64x4::to_array);
         let side = f64::from(map.resolution);
-        if filter != Filter::Nearest {
+        if self.filter != Filter::Nearest {
             // Every tap compares with the slope found up front (`Comparison::new`).
             let slopes = depth_slopes(map, &m, (points, window), normal);
             return Some(std::array::from_fn(|k| {
@@ -145,7 +142,7 @@ impl Lookup {
                     Some(_) => 0.0,
                     None => 1.0,
                 };
-                match filter {
+                match self.filter {
                     Filter::Pcf { size } => pcf_mean(size, test),
                     _ => disk_mean(&self.taps, test),
                 }
@@ -343,8 +340,8 @@ mod tests {
     }
 
     /// Four pixels looked up together give each pixel's own lookup, to the bit, on the cases of
-    /// [`case`], nearest, PCF and disk under slope-scaled biases; other comparisons, and a bias that
-    /// moves the receiver, are not read together. The slope decides some of the lookups.
+    /// [`case`], nearest, PCF and disk under slope-scaled biases; other comparisons, and a bias
+    /// that moves the receiver, are not read together. The slope decides some of the lookups.
     #[test]
     fn four_pixels_together_are_each_pixel_alone() {
         let mut random = SplitMix(0x5eed_0000_0000_100c);
