@@ -364,7 +364,7 @@ impl Bvh {
                 // The rows seen on the plane only for a grid that may be swept.
                 let swept = index
                     .as_ref()
-                    .and_then(|index| Some((index, self.slack(rows, &axes, row_len, count)?)));
+                    .and_then(|index| Some((index, self.slack(rows, &axes, row_len)?)));
                 match swept {
                     Some(((images, buckets), slack)) => {
                         self.sweep(rows, row_len, images, buckets, slack, t_min, t_max);
@@ -433,7 +433,7 @@ impl Bvh {
     /// The loaded rows seen on the plane (`along`, `lo`, `hi` of `rows`), and the slack δ of the
     /// module documentation; `None` if the rays are not parallel enough or a row is not sorted
     /// along itself.
-    fn slack(&self, rows: &mut Rows, axes: &Axes, row_len: usize, count: usize) -> Option<f64> {
+    fn slack(&self, rows: &mut Rows, axes: &Axes, row_len: usize) -> Option<f64> {
         let Rows {
             rays,
             along,
@@ -443,24 +443,28 @@ impl Bvh {
         } = rows;
         along.clear();
         lo.clear();
-        lo.resize(count, f64::INFINITY);
         hi.clear();
-        hi.resize(count, f64::NEG_INFINITY);
         let mut sorted = true;
         // The slope's bound: the largest |L(d)|² over the smallest d·a (all positive).
         let (mut sideways, mut ahead, mut reach) = (0.0_f64, f64::INFINITY, 0.0_f64);
-        for (k, ray) in rays.iter().enumerate() {
-            let point = axes.plane(ray.origin);
-            let row = k / row_len;
-            if k % row_len > 0 && point.x < along[k - 1] {
-                sorted = false;
+        for rays in rays.chunks(row_len) {
+            let (mut low, mut high, mut previous) =
+                (f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY);
+            for ray in rays {
+                let point = axes.plane(ray.origin);
+                if point.x < previous {
+                    sorted = false;
+                }
+                previous = point.x;
+                along.push(point.x);
+                low = low.min(point.y);
+                high = high.max(point.y);
+                sideways = sideways.max(axes.plane(ray.direction).length_squared());
+                ahead = ahead.min(ray.direction.dot(axes.axis));
+                reach = reach.max(ray.origin.abs().max_element());
             }
-            along.push(point.x);
-            lo[row] = lo[row].min(point.y);
-            hi[row] = hi[row].max(point.y);
-            sideways = sideways.max(axes.plane(ray.direction).length_squared());
-            ahead = ahead.min(ray.direction.dot(axes.axis));
-            reach = reach.max(ray.origin.abs().max_element());
+            lo.push(low);
+            hi.push(high);
         }
         let reach = self.magnitude + reach;
         // At least every ray's |L(d)|/(d·a); false for rays across or against the axis.
@@ -591,7 +595,7 @@ mod tests {
         let row = |j: usize, out: &mut [Ray]| out.copy_from_slice(&rays[4 * j..4 * j + 4]);
         let mut rows = Rows::default();
         bvh.load(&mut rows, 4, 0, 3, &row).expect("valid rays");
-        bvh.slack(&mut rows, &axes, 4, 3)
+        bvh.slack(&mut rows, &axes, 4)
     }
 
     /// Parallel rows in order are swept, with a slack of the order of `SLACK·R`; converging rays
