@@ -251,15 +251,6 @@ fn midpoints(centres: &[f64]) -> impl Iterator<Item = f64> + '_ {
     centres.windows(2).map(|c| c[0] + 0.5 * (c[1] - c[0]))
 }
 
-/// One sample: its world position, eye depth and light-frame position (`None` where a spot's
-/// transform sends it behind the light).
-#[derive(Clone, Copy, Debug)]
-struct Sample {
-    world: DVec3,
-    depth: f64,
-    light: Option<DVec3>,
-}
-
 /// Plans the sample distribution shadow map of `input`'s light: `count` z-partitions (fewer where
 /// a split interval holds no sample: [merged empty partitions](#merged-empty-partitions)) split by
 /// `variant` from the eye depths of `samples` — the world positions of the visible pixels, as an
@@ -294,27 +285,25 @@ pub fn plan(
     let frame = LightFrame::new(&input.eye, &input.light, KEY)?;
     let to_light = frame.world_to_light();
     let (e, v) = (input.eye.pose.eye(), input.eye.pose.forward());
-    // Every pass over the samples is parallel, and keeps the samples' order (`gather`).
-    let samples: Vec<Sample> = gather(samples, |_, p| input.light.reaches(*p))
+    // Every pass over the samples is parallel, and keeps the samples' order (`gather`). Each
+    // pass reads the positions alone, and a light-frame position is computed where it is used:
+    // cheaper than reading it back.
+    let samples: Vec<DVec3> = gather(samples, |_, p| input.light.reaches(*p));
+    if samples
         .par_iter()
-        .map(|&world| Sample {
-            world,
-            depth: (world - e).dot(v),
-            light: light_point(&to_light, world),
-        })
-        .collect();
-    if samples.par_iter().any(|s| s.light.is_none()) {
+        .any(|&p| light_point(&to_light, p).is_none())
+    {
         return Err(ShadowError::LightInsideFocusBody);
     }
-    let depths: Vec<f64> = samples.par_iter().map(|s| s.depth).collect();
+    let depths: Vec<f64> = samples.par_iter().map(|&p| (p - e).dot(v)).collect();
     let boundaries = variant.boundaries(&depths, count)?;
     let nears = merged_nears(&boundaries, &depths);
-    // Each partition's samples in the samples' order: all of them, moved, for one partition.
-    let served: Vec<Vec<Sample>> = if nears.len() == 1 {
+    // Each partition's samples in the samples' order: all of them for one partition.
+    let served: Vec<Vec<DVec3>> = if nears.len() == 1 {
         vec![samples]
     } else {
         (0..nears.len())
-            .map(|k| gather(&samples, |_, s| serving_index(&nears, s.depth) == k))
+            .map(|k| gather(&samples, |i, _| serving_index(&nears, depths[i]) == k))
             .collect()
     };
     let reach = caster_reach(input, &frame)?;
@@ -554,14 +543,14 @@ impl Window {
 /// The window of a partition's `samples`: their tight box in light space, up to `reach` toward the
 /// light, flat axes widened, then moved out where rounding puts a sample outside
 /// ([half-open window](#half-open-window)).
-fn fit(to_light: &DMat4, samples: &[Sample], reach: f64) -> Result<Window, ShadowError> {
-    let (lo, mut hi) = bounds(samples, |sample| sample.light)?;
+fn fit(to_light: &DMat4, samples: &[DVec3], reach: f64) -> Result<Window, ShadowError> {
+    let (lo, mut hi) = bounds(samples, |&sample| light_point(to_light, sample))?;
     hi.y = hi.y.max(reach);
     let mut window = Window { lo, hi }.unflattened()?;
     for pass in 0..ROUNDING_PASSES {
         let mapping =
             ShadowMapping::Projective(ProjectiveMapping::new(*to_light, window.projection()));
-        let (low, high) = bounds(samples, |sample| mapping.window(sample.world))?;
+        let (low, high) = bounds(samples, |&sample| mapping.window(sample))?;
         if !window.widen(low, high, pass) {
             return Ok(window);
         }
@@ -579,8 +568,8 @@ fn fit(to_light: &DMat4, samples: &[Sample], reach: f64) -> Result<Window, Shado
 /// fixed chunks of [`FIT_CHUNK`] whose bounds are combined in chunk order, so the result is the
 /// same on any thread count; [`ShadowError::LightInsideFocusBody`] where `point` has none.
 fn bounds(
-    samples: &[Sample],
-    point: impl Fn(&Sample) -> Option<DVec3> + Sync,
+    samples: &[DVec3],
+    point: impl Fn(&DVec3) -> Option<DVec3> + Sync,
 ) -> Result<(DVec3, DVec3), ShadowError> {
     let empty = (DVec3::INFINITY, DVec3::NEG_INFINITY);
     let chunks: Vec<Option<(DVec3, DVec3)>> = samples
