@@ -14,7 +14,7 @@
 //! a grid, the eye pass's lookups). And the measurement's own phases for that combination, which every
 //! combination of a study pays once: the per-pixel texel footprints (`study::frame_footprints`; also through the
 //! logarithmic map at 2000², whose derivative is its own closed form), and their statistics
-//! (`aliasing::stats_of` of the total, perspective and projection parts, as `study::outcome`
+//! (`aliasing::stats_of_each` of the total, perspective and projection parts, as `study::outcome`
 //! takes them).
 //!
 //! Figures are recorded with the machine and date in docs/benchmarks.md.
@@ -25,7 +25,7 @@ use std::time::Duration;
 use criterion::measurement::WallTime;
 use criterion::{BenchmarkGroup, Criterion, criterion_group, criterion_main};
 use glam::DVec3;
-use shadowlab_analysis::aliasing::{Footprint, stats_of};
+use shadowlab_analysis::aliasing::stats_of_each;
 use shadowlab_analysis::study::{self, EyePass, Setting, StudyOptions};
 use shadowlab_analysis::truth::{exact_truth, scene_bvh};
 use shadowlab_raster::DepthFormat;
@@ -120,9 +120,16 @@ fn footprint_phases(
         b.iter(|| study::frame_footprints(scene, &eye.image, black_box(&shadows)));
     });
     let per_pixel = study::frame_footprints(scene, &eye.image, &shadows);
-    let parts: [fn(&Footprint) -> f64; 3] = [|f| f.total, |f| f.perspective, |f| f.projection];
     group.bench_function("outdoor/footprint-stats", |b| {
-        b.iter(|| parts.map(|part| stats_of(black_box(&per_pixel), |p| p.as_ref().map(part))));
+        b.iter(|| {
+            stats_of_each(black_box(&per_pixel), |p| {
+                [
+                    p.map(|f| f.total),
+                    p.map(|f| f.perspective),
+                    p.map(|f| f.projection),
+                ]
+            })
+        });
     });
 }
 

@@ -431,28 +431,53 @@ fn value_of_key(key: u64) -> f64 {
 }
 
 /// [`stats`] of `value(item)` over `items` (`None` and NaN left out), in parallel and in place:
-/// each chunk of `STATS_CHUNK` items keys its values (integers that order as `f64::total_cmp`
-/// orders the values) and takes their maximum and exact sum; the percentile is then selected among
-/// the chunks' keys by a radix selection whose bucket counts are taken in parallel, without
-/// gathering them into one list — no pass over all values runs on one thread.
+/// [`stats_of_each`] of the one value.
 #[must_use]
 pub fn stats_of<T: Sync>(items: &[T], value: impl Fn(&T) -> Option<f64> + Sync) -> AliasingStats {
-    let chunks: Vec<ChunkStats> = items
+    let [stats] = stats_of_each(items, |item| [value(item)]);
+    stats
+}
+
+/// [`stats`] of each of the `N` values `values(item)` gives over `items` (`None` and NaN left
+/// out), in parallel and in place, the items read once for all `N`: each chunk of `STATS_CHUNK`
+/// items keys each value (integers that order as `f64::total_cmp` orders the values) and takes
+/// their maximum and exact sum; each percentile is then selected among the chunks' keys by a radix
+/// selection whose bucket counts are taken in parallel, without gathering them into one list — no
+/// pass over all values runs on one thread.
+#[must_use]
+pub fn stats_of_each<T: Sync, const N: usize>(
+    items: &[T],
+    values: impl Fn(&T) -> [Option<f64>; N] + Sync,
+) -> [AliasingStats; N] {
+    let chunks: Vec<[ChunkStats; N]> = items
         .par_chunks(STATS_CHUNK)
         .map(|chunk| {
-            let keys: Vec<u64> = chunk
-                .iter()
-                .filter_map(&value)
-                .filter(|v| !v.is_nan())
-                .map(key_of)
-                .collect();
-            ChunkStats {
+            let mut keys: [Vec<u64>; N] = std::array::from_fn(|_| Vec::with_capacity(chunk.len()));
+            for item in chunk {
+                for (keys, value) in keys.iter_mut().zip(values(item)) {
+                    if let Some(value) = value.filter(|v| !v.is_nan()) {
+                        keys.push(key_of(value));
+                    }
+                }
+            }
+            keys.map(|keys| ChunkStats {
                 max: keys.iter().max().copied(),
                 sum: ExactSum::of(keys.iter().map(|&key| value_of_key(key))),
                 keys,
-            }
+            })
         })
         .collect();
+    let mut parts: [Vec<ChunkStats>; N] = std::array::from_fn(|_| Vec::with_capacity(chunks.len()));
+    for chunk in chunks {
+        for (part, stats) in parts.iter_mut().zip(chunk) {
+            part.push(stats);
+        }
+    }
+    parts.map(summary)
+}
+
+/// The statistics of the values whose chunks are `chunks` ([`stats_of_each`]).
+fn summary(chunks: Vec<ChunkStats>) -> AliasingStats {
     let Some(max) = chunks.iter().filter_map(|chunk| chunk.max).max() else {
         return AliasingStats {
             max: 0.0,
@@ -481,7 +506,7 @@ pub fn stats_of<T: Sync>(items: &[T], value: impl Fn(&T) -> Option<f64> + Sync) 
     }
 }
 
-/// What [`stats_of`] keeps of one chunk of values.
+/// What [`stats_of_each`] keeps of one chunk of one value.
 struct ChunkStats {
     /// The values' keys ([`key_of`]), in the chunk's order.
     keys: Vec<u64>,

@@ -13,7 +13,7 @@ use shadowlab_shadow::{
 };
 use shadowlab_trace::Bvh;
 
-use crate::aliasing::{AliasingStats, Footprint, footprints_served, stats_of};
+use crate::aliasing::{AliasingStats, Footprint, footprints_served, stats_of_each};
 use crate::attribution::{Attribution, Causes, attribute, cause_image};
 use crate::classify::{Misclassification, difference_image, disagreement, misclassification};
 use crate::error::AnalysisError;
@@ -463,13 +463,14 @@ pub(crate) fn outcome(
     leaks: Option<FilterLeaks>,
 ) -> Outcome {
     let start = Instant::now();
-    let part = |f: fn(&Footprint) -> f64| stats_of(per_pixel, |p| p.as_ref().map(f));
-    // The three sets summarised side by side (each in parallel too): the same statistics.
-    let (total, (perspective, projection)) = rayon::join(
-        || part(|f| f.total),
-        || rayon::join(|| part(|f| f.perspective), || part(|f| f.projection)),
-    );
-    let footprint = [total, perspective, projection];
+    // The three parts summarised from one read of the footprints.
+    let footprint = stats_of_each(per_pixel, |p| {
+        [
+            p.map(|f| f.total),
+            p.map(|f| f.perspective),
+            p.map(|f| f.projection),
+        ]
+    });
     let footprints = *footprint_time + start.elapsed();
     Outcome {
         errors: misclassification(truth, &shadows.lit),
