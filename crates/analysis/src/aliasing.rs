@@ -452,7 +452,9 @@ pub fn stats_of_each<T: Sync, const N: usize>(
     let chunks: Vec<[ChunkStats; N]> = items
         .par_chunks(STATS_CHUNK)
         .map(|chunk| {
-            let mut keys: [Vec<u64>; N] = std::array::from_fn(|_| Vec::with_capacity(chunk.len()));
+            // Grown as needed: sized for the whole chunk, they would hold room for every item,
+            // where a frame's footprints leave out about half its pixels (nothing visible).
+            let mut keys: [Vec<u64>; N] = std::array::from_fn(|_| Vec::new());
             for item in chunk {
                 for (keys, value) in keys.iter_mut().zip(values(item)) {
                     if let Some(value) = value.filter(|v| !v.is_nan()) {
