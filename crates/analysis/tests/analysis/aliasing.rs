@@ -8,7 +8,8 @@ use std::f64::consts::PI;
 use glam::{DAffine3, DMat2, DQuat, DVec2, DVec3};
 use proptest::prelude::*;
 use shadowlab_analysis::aliasing::{
-    Footprint, GRAZING_COS, footprint, footprints, stats, texel_jacobian,
+    AliasingStats, Footprint, GRAZING_COS, footprint, footprints, stats, stats_of_each,
+    texel_jacobian,
 };
 use shadowlab_hull::{Aabb, NdcDepth, Perspective, ViewPose};
 use shadowlab_params::ParameterRule;
@@ -419,6 +420,32 @@ fn the_selected_percentile_is_the_sorted_one() {
             assert_eq!(s.p99.to_bits(), p99.to_bits(), "{} values", values.len());
             assert_eq!(s.max.to_bits(), max.to_bits(), "{} values", values.len());
             assert_eq!(s.count, values.len() as u64);
+        }
+    }
+}
+
+/// Claim: `stats_of_each` summarises each of its values as `stats` does that value alone — the
+/// maximum, the selected percentile, the exact mean and the count, bit for bit — whatever the
+/// others are: items across several chunks, each value missing (`None`) or NaN at its own items.
+#[test]
+fn each_value_is_summarised_as_alone() {
+    let mut next = split_mix64(31);
+    for n in [0, 1, 16_385, 40_000] {
+        let items: Vec<[Option<f64>; 3]> = (0..n)
+            .map(|_| {
+                std::array::from_fn(|_| match next() % 10 {
+                    0 => None,
+                    1 => Some(f64::NAN),
+                    _ => Some(f64::from_bits(next() >> 2)),
+                })
+            })
+            .collect();
+        let each = stats_of_each(&items, |item| *item);
+        for (k, summary) in each.iter().enumerate() {
+            let alone = stats(items.iter().filter_map(|item| item[k]));
+            let bits = |s: &AliasingStats| [s.max, s.p99, s.mean].map(f64::to_bits);
+            assert_eq!(bits(summary), bits(&alone), "value {k} of {n} items");
+            assert_eq!(summary.count, alone.count, "value {k} of {n} items");
         }
     }
 }
