@@ -226,7 +226,7 @@ fn scale(value: f64, exponent: i32) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::test_random::SplitMix;
+    use shadowlab_test_random::SplitMix;
 
     /// Sums that no ordered f64 sum gets right come out exact.
     #[test]
@@ -277,14 +277,15 @@ mod tests {
         let mut random = SplitMix(0x5eed_0000_0000_0015);
         let mut compared = 0;
         for round in 0..2000 {
-            let count = 1 + usize::try_from(random.next() % 300).expect("small");
+            let count = 1 + usize::try_from(random.next_u64() % 300).expect("small");
             // From the least subnormal's exponent to where 300 values of 53 bits still fit.
-            let exponent = i32::try_from(random.next() % 2035).expect("small") - 1074;
-            let bits = 1 + random.next() % 53;
+            let exponent = i32::try_from(random.next_u64() % 2035).expect("small") - 1074;
+            let bits = 1 + random.next_u64() % 53;
             let integers: Vec<i64> = (0..count)
                 .map(|_| {
-                    let magnitude = i64::try_from(random.next() >> (64 - bits)).expect("53 bits");
-                    if random.next() & 1 == 0 {
+                    let magnitude =
+                        i64::try_from(random.next_u64() >> (64 - bits)).expect("53 bits");
+                    if random.next_u64() & 1 == 0 {
                         magnitude
                     } else {
                         -magnitude
@@ -316,7 +317,7 @@ mod tests {
             );
             let reversed: Vec<f64> = values.iter().rev().copied().collect();
             assert_eq!(ExactSum::of(reversed).value().to_bits(), sum.to_bits());
-            let split = usize::try_from(random.next()).expect("64-bit") % (count + 1);
+            let split = usize::try_from(random.next_u64()).expect("64-bit") % (count + 1);
             let merged = ExactSum::of(values[..split].iter().copied())
                 .merged(ExactSum::of(values[split..].iter().copied()));
             assert_eq!(merged.value().to_bits(), sum.to_bits());

@@ -65,8 +65,6 @@ pub mod study;
 pub mod sweep;
 mod tally;
 pub mod temporal;
-#[cfg(test)]
-mod test_random;
 pub mod truth;
 pub mod view_axis;
 

@@ -80,8 +80,6 @@ mod bvh;
 mod error;
 mod offset;
 mod ray;
-#[cfg(test)]
-mod test_random;
 mod triangle;
 
 pub use bvh::{Bvh, BvhStats, GRID_CHUNK, RAY_CHUNK};

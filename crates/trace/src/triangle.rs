@@ -335,7 +335,7 @@ mod tests {
 
     use super::{RAYS, TriangleVertices, intersect, intersect_rays};
     use crate::ray::{PreparedRay, Ray};
-    use crate::test_random::SplitMix;
+    use shadowlab_test_random::SplitMix;
 
     /// A point with small integer coordinates: rays between such points meet edges and vertices
     /// exactly, where the edge functions are zero and their exact signs decide.

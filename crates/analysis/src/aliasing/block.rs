@@ -133,7 +133,7 @@ mod tests {
 
     use super::{LANES, footprint_block};
     use crate::aliasing::{Footprint, Prepared, Viewer, footprint_of, local};
-    use crate::test_random::SplitMix;
+    use shadowlab_test_random::SplitMix;
 
     /// The same bits, or both undefined.
     fn same(block: Option<Footprint>, one: Option<Footprint>) -> bool {

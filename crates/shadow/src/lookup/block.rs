@@ -176,6 +176,7 @@ impl Lookup {
 mod tests {
     use glam::{DMat4, DVec3, DVec4};
     use shadowlab_raster::DepthFormat;
+    use shadowlab_test_random::SplitMix;
     use wide::f64x4;
 
     use super::{LANES, Vectors, depth_slopes, windows};
@@ -184,31 +185,6 @@ mod tests {
     use crate::map::ShadowMap;
     use crate::setup::{LightSetup, ProjectiveMapping, ShadowMapping};
     use crate::technique::Technique;
-
-    /// A small deterministic generator (SplitMix64, seed given per test).
-    struct SplitMix(u64);
-
-    impl SplitMix {
-        fn unit(&mut self) -> f64 {
-            self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-            let mut z = self.0;
-            z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-            z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-            f64::from(u32::try_from((z ^ (z >> 31)) >> 32).expect("32 bits")) / 4_294_967_296.0
-        }
-
-        fn range(&mut self, lo: f64, hi: f64) -> f64 {
-            lo + (hi - lo) * self.unit()
-        }
-
-        fn vector(&mut self, half: f64) -> DVec3 {
-            DVec3::new(
-                self.range(-half, half),
-                self.range(-half, half),
-                self.range(-half, half),
-            )
-        }
-    }
 
     /// A map through `clip_from_world` holding `depths` (a square of them).
     fn map(clip_from_world: DMat4, depths: &[f64]) -> ShadowMap {

@@ -380,7 +380,7 @@ mod tests {
     use super::{PACKET, Packet};
     use crate::build::{Aabb, Lanes, Node4};
     use crate::ray::{PreparedRay, Ray};
-    use crate::test_random::SplitMix;
+    use shadowlab_test_random::SplitMix;
 
     fn prepared(origin: DVec3, direction: DVec3) -> PreparedRay {
         PreparedRay::new(&Ray::new(origin, direction).expect("valid"), 4.0).expect("valid")
