@@ -72,7 +72,7 @@ use shadowlab_shadow::paraboloid::ParaboloidMap;
 use shadowlab_shadow::{LightSetup, ShadowMapping};
 
 use crate::exact_sum::ExactSum;
-use block::footprint_block;
+use block::{LaneMapping, footprint_block};
 
 mod block;
 
@@ -119,6 +119,16 @@ impl<'a> Prepared<'a> {
             ShadowMapping::Logarithmic(map) => Self::Logarithmic(map),
             ShadowMapping::Paraboloid(map) => Self::Paraboloid(map),
             ShadowMapping::Projective(mapping) => Self::Projective(mapping.clip_from_world()),
+        }
+    }
+
+    /// The mapping as [`footprint_block`] takes it, four pixels at a time; `None` for a paraboloid
+    /// hemisphere, which is differentiated one pixel at a time.
+    fn in_lanes(&self) -> Option<LaneMapping<'_>> {
+        match self {
+            Self::Projective(m) => Some(LaneMapping::Projective(m)),
+            Self::Logarithmic(map) => Some(LaneMapping::Logarithmic(map)),
+            Self::Paraboloid(_) => None,
         }
     }
 
@@ -318,8 +328,8 @@ pub fn footprints(
 /// [`footprints`] through one of several maps per pixel — `maps[k]` being a setup and its map
 /// side, `serving(pixel)` the index of the map that serves pixel `pixel` (`None`: no footprint):
 /// each pixel's footprint is computed once, through its own map, as a partitioned shadow looks it
-/// up. Four neighbouring pixels served by one projective map are measured side by side (the
-/// `block` module: the same bits as one by one).
+/// up. Four neighbouring pixels served by one projective or logarithmic map are measured side by
+/// side (the `block` module: the same bits as one by one).
 #[must_use]
 pub fn footprints_served(
     maps: &[(&LightSetup, u32)],
@@ -358,11 +368,12 @@ pub fn footprints_served(
                 let served: [Option<usize>; LANES] = std::array::from_fn(|k| map_of(first + k));
                 if let Some(index) = served[0]
                     && served.iter().all(|&s| s == Some(index))
-                    && let (Prepared::Projective(m), resolution) = &mappings[index]
+                    && let (mapping, resolution) = &mappings[index]
+                    && let Some(mapping) = mapping.in_lanes()
                 {
                     let at = |field: &[DVec3]| std::array::from_fn(|k| field[first + k]);
                     return footprint_block(
-                        m,
+                        mapping,
                         *resolution,
                         &viewer,
                         &at(&eye.position),

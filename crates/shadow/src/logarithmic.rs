@@ -36,7 +36,7 @@ use crate::setup::{LightSetup, ShadowMapping, WarpReport};
 use crate::technique::{LogarithmicChoice, Technique};
 use crate::warp::Extents;
 
-pub use crate::logarithmic_map::{LogarithmicMap, TexelRow};
+pub use crate::logarithmic_map::{LanesAt, LogarithmicMap, TexelRow};
 
 /// The smallest λ of a logarithmic map: a reference point within a billionth of B's depth of its
 /// near plane would all but sit on B (a third of the map's rows would cover B's first 1e-6 of
@@ -312,5 +312,74 @@ mod tests {
             }
         }
         assert!(compared > 1000, "{compared}");
+    }
+
+    /// Four points side by side ([`LogarithmicMap::at_lanes`]) give each point's derivative to the
+    /// bit, and are undefined exactly where it is `None`: spot and directional light spaces, κ = 0
+    /// among the λ, points behind the spot light and on the eye's side of the reference point
+    /// among defined ones.
+    #[test]
+    fn four_points_side_by_side_are_each_point_alone() {
+        use crate::lanes::{LANES, Vectors};
+        use shadowlab_test_random::SplitMix;
+
+        let mut random = SplitMix(0x5eed_0000_0000_1095);
+        let spot = glam::dcamera::rh::proj::opengl::perspective(1.0, 1.0, 0.5, 50.0)
+            * glam::dcamera::rh::view::look_at_mat4(
+                DVec3::new(1.0, 8.0, 2.0),
+                DVec3::ZERO,
+                DVec3::Z,
+            );
+        let (mut defined, mut undefined) = (0, 0);
+        for round in 0..3000_usize {
+            let lambda = [f64::INFINITY, 1e-3, 0.3, 1.0, 7.0, 1e3][round % 6];
+            let kappa = 1.0 / lambda;
+            let world_to_light = if round % 2 == 0 {
+                spot
+            } else {
+                DMat4::IDENTITY
+            };
+            let map = LogarithmicMap {
+                world_to_light,
+                light_to_world: world_to_light.inverse(),
+                z_max: -2.0,
+                depth: 2.0 * random.range(0.1, 10.0),
+                kappa,
+                log_range: kappa.ln_1p(),
+                left: random.range(-2.0, -1.0),
+                right: random.range(1.0, 3.0),
+                y_min: -3.0,
+                y_max: 3.0,
+            };
+            let points: [DVec3; LANES] = std::array::from_fn(|_| random.vector(20.0));
+            let directions: [[DVec3; LANES]; 3] =
+                std::array::from_fn(|_| std::array::from_fn(|_| random.vector(1.0)));
+            let at = map.at_lanes(Vectors::of(&points));
+            for direction in &directions {
+                let [dx, dy] = at
+                    .ndc_derivative(Vectors::of(direction))
+                    .map(|v| v.to_array());
+                for k in 0..LANES {
+                    let one = map.ndc_derivative(points[k], direction[k]);
+                    assert_eq!(at.undefined()[k], one.is_none(), "round {round}, lane {k}");
+                    if let Some(one) = one {
+                        assert_eq!(
+                            (dx[k].to_bits(), dy[k].to_bits()),
+                            (one.x.to_bits(), one.y.to_bits()),
+                            "round {round}, lane {k}: ({}, {}) against {one}",
+                            dx[k],
+                            dy[k]
+                        );
+                        defined += 1;
+                    } else {
+                        undefined += 1;
+                    }
+                }
+            }
+        }
+        assert!(
+            defined > 10_000 && undefined > 2_000,
+            "{defined} {undefined}"
+        );
     }
 }

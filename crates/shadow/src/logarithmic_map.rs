@@ -3,8 +3,10 @@
 //! plans it.
 
 use glam::{DMat4, DVec2, DVec3};
+use wide::f64x4;
 
 use crate::homogeneous::{divided, point_of};
+use crate::lanes::{LANES, Vectors};
 
 /// The exact logarithmic mapping of one shadow map.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -97,6 +99,30 @@ impl LogarithmicMap {
         Some(DVec2::new(dx, dy))
     }
 
+    /// [`Self::ndc_derivative`] at four points at once (`lanes` module): what the derivatives at
+    /// a point share — `h`, `q`, `w` — for the directions [`LanesAt::ndc_derivative`] takes.
+    #[inline(always)]
+    #[must_use]
+    pub fn at_lanes(&self, world: Vectors) -> LanesAt<'_> {
+        let h = world.transformed(&self.world_to_light, 1.0);
+        // `point_of`: divided in every lane, also where `h_w = 1`, which it skips (`x / 1 = x`).
+        let q = Vectors {
+            x: h[0] / h[3],
+            y: h[1] / h[3],
+            z: h[2] / h[3],
+        };
+        let tau = (f64x4::splat(self.z_max) - q.z) / f64x4::splat(self.depth);
+        let w = f64x4::ONE + f64x4::splat(self.kappa) * tau;
+        let (h_w, w_lanes) = (h[3].to_array(), w.to_array());
+        LanesAt {
+            map: self,
+            h,
+            q,
+            w,
+            undefined: std::array::from_fn(|k| h_w[k] <= 0.0 || w_lanes[k] <= 0.0),
+        }
+    }
+
     /// The ray of light through the shadow-map point at NDC `(x, y)`: its origin on B's light side
     /// (NDC depth −1) and the point where it leaves B's far side (NDC depth +1), in world space.
     /// Casting it and mapping the first hit through [`Self::ndc`] gives the texel's depth.
@@ -163,6 +189,47 @@ impl LogarithmicMap {
         } else {
             1.0
         }
+    }
+}
+
+/// A logarithmic map at four points ([`LogarithmicMap::at_lanes`]): each lane's `h = M·(p, 1)`,
+/// `q = h/h_w` and `w = 1 + κτ`, as [`LogarithmicMap::ndc_derivative`] computes them.
+#[derive(Clone, Copy, Debug)]
+pub struct LanesAt<'a> {
+    map: &'a LogarithmicMap,
+    h: [f64x4; 4],
+    q: Vectors,
+    w: f64x4,
+    undefined: [bool; LANES],
+}
+
+impl LanesAt<'_> {
+    /// The lanes where [`LogarithmicMap::ndc_derivative`] is `None` (behind a spot light, or on
+    /// the eye's side of the reference point): their derivatives are meaningless numbers.
+    #[must_use]
+    pub fn undefined(&self) -> [bool; LANES] {
+        self.undefined
+    }
+
+    /// [`LogarithmicMap::ndc_derivative`] along `direction` (one per lane): `(Ẋ, Ẏ)` per lane,
+    /// each lane the one-point function's IEEE operations in its order, so its bits wherever it is
+    /// defined (`lanes` module; a unit test holds the two together).
+    #[inline(always)]
+    #[must_use]
+    pub fn ndc_derivative(&self, direction: Vectors) -> [f64x4; 2] {
+        let map = self.map;
+        let dh = direction.transformed(&map.world_to_light, 0.0);
+        let (h, q, w) = (&self.h, self.q, self.w);
+        // `divided(ḣ·h_w − h·ḣ_w, h_w²)`, divided in every lane (`x / 1 = x`).
+        let h_w2 = h[3] * h[3];
+        let dq_x = (dh[0] * h[3] - h[0] * dh[3]) / h_w2;
+        let dq_z = (dh[2] * h[3] - h[2] * dh[3]) / h_w2;
+        let dtau = -dq_z / f64x4::splat(map.depth);
+        let dw = f64x4::splat(map.kappa) * dtau;
+        let two = f64x4::splat(2.0);
+        let dx = two * (dq_x * w - q.x * dw) / (w * w * f64x4::splat(map.right - map.left));
+        let dy = two * dtau * f64x4::splat(map.slope()) / w;
+        [dx, dy]
     }
 }
 

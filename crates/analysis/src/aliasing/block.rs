@@ -1,5 +1,5 @@
 //! A pixel's footprint ([`footprint_of`](super::footprint_of) of [`local`](super::local)) through a
-//! projective map, for four pixels at once.
+//! projective or the logarithmic map, for four pixels at once.
 //!
 //! The footprint's arithmetic is a long chain of products, divisions and square roots per pixel
 //! (three derivatives, each a division; a normalisation, two projections onto the plane, two
@@ -21,27 +21,74 @@
 
 use glam::{DMat4, DVec3};
 use shadowlab_shadow::lanes::{LANES, Vectors};
+use shadowlab_shadow::logarithmic::{self, LogarithmicMap};
 use wide::f64x4;
 
 use super::{Footprint, GRAZING_COS, Viewer};
 
-/// `At::derivative` of a projective map, in texels: the window coordinates' derivative along
-/// `direction` at the point of clip coordinates `clip`, times `texels`. Divided in every lane,
-/// also where `w = 1`, which the one-pixel function skips (`quotient`): `x / 1 = x`, and one
-/// vector division serves four lanes.
-#[inline(always)]
-fn derivative(m: &DMat4, clip: &[f64x4; 4], direction: Vectors, texels: f64x4) -> [f64x4; 2] {
-    let dp = direction.transformed(m, 0.0);
-    let w = clip[3];
-    let half = f64x4::splat(0.5);
-    let d = |i: usize| half * (dp[i] * w - clip[i] * dp[3]) / (w * w) * texels;
-    [d(0), d(1)]
+/// A mapping that [`footprint_block`] differentiates four points at a time.
+#[derive(Clone, Copy)]
+pub(super) enum LaneMapping<'a> {
+    /// World → GL clip space.
+    Projective(&'a DMat4),
+    /// The logarithmic map ([`LogarithmicMap::at_lanes`]).
+    Logarithmic(&'a LogarithmicMap),
 }
 
-/// [`footprint_of`](super::footprint_of)`(`[`local`](super::local)`)` through the projective map
-/// `m` (world → clip) at four points with their normals, lane by lane (module docs).
+/// A [`LaneMapping`] at four points: `At` of the one-pixel function, lane by lane.
+enum LanesAt<'a> {
+    /// A projective map and the points' clip coordinates.
+    Projective { m: &'a DMat4, clip: [f64x4; 4] },
+    /// The logarithmic map at the points.
+    Logarithmic(logarithmic::LanesAt<'a>),
+}
+
+impl LanesAt<'_> {
+    fn new<'a>(mapping: LaneMapping<'a>, points: Vectors) -> LanesAt<'a> {
+        match mapping {
+            LaneMapping::Projective(m) => LanesAt::Projective {
+                m,
+                clip: points.transformed(m, 1.0),
+            },
+            LaneMapping::Logarithmic(map) => LanesAt::Logarithmic(map.at_lanes(points)),
+        }
+    }
+
+    /// The lanes the mapping does not differentiate at: behind a projective map's centre (clip
+    /// `w <= 0`), where the logarithmic map's derivative is `None`.
+    fn undefined(&self) -> [bool; LANES] {
+        match self {
+            Self::Projective { clip, .. } => {
+                let w = clip[3].to_array();
+                std::array::from_fn(|k| w[k] <= 0.0)
+            }
+            Self::Logarithmic(at) => at.undefined(),
+        }
+    }
+
+    /// `At::derivative` in texels: the window coordinates' derivative along `direction`, times
+    /// `texels`. A projective map's is divided in every lane, also where `w = 1`, which the
+    /// one-pixel function skips (`quotient`): `x / 1 = x`, and one vector division serves four
+    /// lanes. The logarithmic map's NDC derivative is halved into window units, as there.
+    #[inline(always)]
+    fn derivative(&self, direction: Vectors, texels: f64x4) -> [f64x4; 2] {
+        let half = f64x4::splat(0.5);
+        match self {
+            Self::Projective { m, clip } => {
+                let dp = direction.transformed(m, 0.0);
+                let w = clip[3];
+                let d = |i: usize| half * (dp[i] * w - clip[i] * dp[3]) / (w * w) * texels;
+                [d(0), d(1)]
+            }
+            Self::Logarithmic(at) => at.ndc_derivative(direction).map(|d| d * half * texels),
+        }
+    }
+}
+
+/// [`footprint_of`](super::footprint_of)`(`[`local`](super::local)`)` through `mapping` at four
+/// points with their normals, lane by lane (module docs).
 pub(super) fn footprint_block(
-    m: &DMat4,
+    mapping: LaneMapping<'_>,
     resolution: u32,
     viewer: &Viewer,
     points: &[DVec3; LANES],
@@ -61,10 +108,10 @@ pub(super) fn footprint_block(
     let (t1, t2) = (on_plane(across), on_plane(up));
     let distance = to_point.length();
     let texels = f64x4::splat(f64::from(resolution));
-    let clip = Vectors::of(points).transformed(m, 1.0);
-    let [d1x, d1y] = derivative(m, &clip, t1, texels);
-    let [d2x, d2y] = derivative(m, &clip, t2, texels);
-    let [dnx, dny] = derivative(m, &clip, n, texels);
+    let at = LanesAt::new(mapping, Vectors::of(points));
+    let [d1x, d1y] = at.derivative(t1, texels);
+    let [d2x, d2y] = at.derivative(t2, texels);
+    let [dnx, dny] = at.derivative(n, texels);
     // The light's ray: c·(t1, t2, n) with Du·(t1, t2, n)·c = 0, summed from the left.
     let c = Vectors {
         x: d1x,
@@ -89,11 +136,11 @@ pub(super) fn footprint_block(
     let total = sigma_max / (a * d - c * b).abs();
     let projection = cos_alpha / cos_beta;
     let perspective = total / projection;
+    let undifferentiated = at.undefined();
     let [
         reciprocal,
         depth,
         facing,
-        w,
         cos_beta,
         total,
         projection,
@@ -102,7 +149,6 @@ pub(super) fn footprint_block(
         reciprocal,
         depth,
         facing,
-        clip[3],
         cos_beta,
         total,
         projection,
@@ -113,9 +159,8 @@ pub(super) fn footprint_block(
     std::array::from_fn(|k| {
         let normalised = reciprocal[k].is_finite() && reciprocal[k] > 0.0;
         let seen = !(depth[k] <= 0.0 || facing[k] == 0.0 || !facing[k].is_finite());
-        let behind = w[k] <= 0.0;
         let finite = jacobian.iter().all(|v| v[k].is_finite()) && cos_beta[k].is_finite();
-        let defined = normalised && seen && !behind && finite;
+        let defined = normalised && seen && !undifferentiated[k] && finite;
         let grazed = cos_beta[k] < GRAZING_COS;
         let footprint =
             !grazed && total[k].is_finite() && projection[k].is_finite() && projection[k] > 0.0;
@@ -131,7 +176,7 @@ pub(super) fn footprint_block(
 mod tests {
     use glam::{DMat4, DVec3, DVec4};
 
-    use super::{LANES, footprint_block};
+    use super::{LANES, LaneMapping, footprint_block};
     use crate::aliasing::{Footprint, Prepared, Viewer, footprint_of, local};
     use shadowlab_test_random::SplitMix;
 
@@ -208,7 +253,13 @@ mod tests {
                     _ => {}
                 }
             }
-            let block = footprint_block(&m, resolution, &viewer, &points, &normals);
+            let block = footprint_block(
+                LaneMapping::Projective(&m),
+                resolution,
+                &viewer,
+                &points,
+                &normals,
+            );
             let mapping = Prepared::Projective(m);
             for k in 0..LANES {
                 let one = local(&mapping, resolution, &viewer, points[k], normals[k])

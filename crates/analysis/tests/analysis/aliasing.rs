@@ -13,10 +13,10 @@ use shadowlab_analysis::aliasing::{
 };
 use shadowlab_hull::{Aabb, NdcDepth, Perspective, ViewPose};
 use shadowlab_params::ParameterRule;
-use shadowlab_scene::{Camera, procedural};
+use shadowlab_scene::{Camera, Scene, procedural};
 use shadowlab_shadow::{
-    Eye, FocusPolicy, LightSource, PlanInput, ShadowError, Technique, WarpChoice, eye_pass,
-    measure, plan,
+    Eye, FocusPolicy, LightSetup, LightSource, PlanInput, ShadowError, Technique, WarpChoice,
+    eye_pass, measure, plan,
 };
 
 use crate::support::{camera, config, on_threads, orthographic, relative, scene, split_mix64, sun};
@@ -450,11 +450,9 @@ fn each_value_is_summarised_as_alone() {
     }
 }
 
-/// Claim: the footprints of a LiSPSM map and a logarithmic one of a ground with a box are
-/// identical on 1, 2 and 3 threads, and defined at nearly every visible pixel.
-#[test]
-fn footprints_are_the_same_on_any_thread_count() {
-    let scene = scene(
+/// A ground with a box under the sun, seen from above it.
+fn ground_with_a_box() -> Scene {
+    scene(
         camera(
             DVec3::new(0.0, 3.0, 10.0),
             DVec3::new(0.0, 0.0, -20.0),
@@ -469,7 +467,28 @@ fn footprints_are_the_same_on_any_thread_count() {
                 .unwrap()
                 .transformed(&DAffine3::from_translation(DVec3::new(1.0, 1.0, -8.0))),
         ],
-    );
+    )
+}
+
+/// `technique`'s set-up of `scene`'s first light.
+fn setup_of(scene: &Scene, technique: Technique) -> LightSetup {
+    let partitions = shadowlab_shadow::plan_light(
+        scene,
+        &scene.lights[0],
+        &shadowlab_shadow::PlanOptions::new(technique),
+        None,
+        256,
+        None,
+    )
+    .unwrap_or_else(|e| panic!("{technique}: {e}"));
+    partitions[0].setup.clone()
+}
+
+/// Claim: the footprints of a LiSPSM map and a logarithmic one of a ground with a box are
+/// identical on 1, 2 and 3 threads, and defined at nearly every visible pixel.
+#[test]
+fn footprints_are_the_same_on_any_thread_count() {
+    let scene = ground_with_a_box();
     let (eye, _) = eye_pass(&scene).unwrap();
     let visible = eye
         .triangle
@@ -477,16 +496,7 @@ fn footprints_are_the_same_on_any_thread_count() {
         .filter(|t| **t != shadowlab_raster::NO_TRIANGLE)
         .count();
     for technique in [Technique::Lispsm(WarpChoice::PAPER), Technique::LOGARITHMIC] {
-        let partitions = shadowlab_shadow::plan_light(
-            &scene,
-            &scene.lights[0],
-            &shadowlab_shadow::PlanOptions::new(technique),
-            None,
-            256,
-            None,
-        )
-        .unwrap_or_else(|e| panic!("{technique}: {e}"));
-        let setup = &partitions[0].setup;
+        let setup = &setup_of(&scene, technique);
         let run = |threads| on_threads(threads, || footprints(setup, 1024, &eye, &scene.camera));
         let one = run(1);
         assert_eq!(one, run(2));
@@ -496,5 +506,29 @@ fn footprints_are_the_same_on_any_thread_count() {
             defined * 100 >= visible * 99,
             "{technique}: {defined} of {visible}"
         );
+    }
+}
+
+/// Claim: `footprints`, which measures four neighbouring pixels side by side, gives every pixel
+/// the bits of `footprint` at that pixel alone, through a LiSPSM map and a logarithmic one.
+#[test]
+fn footprints_are_each_pixels_footprint_to_the_bit() {
+    let scene = ground_with_a_box();
+    let (eye, _) = eye_pass(&scene).unwrap();
+    for technique in [Technique::Lispsm(WarpChoice::PAPER), Technique::LOGARITHMIC] {
+        let setup = setup_of(&scene, technique);
+        let all = footprints(&setup, 1000, &eye, &scene.camera);
+        let mut defined = 0;
+        for (p, measured) in all.iter().enumerate() {
+            let alone = (eye.triangle[p] != shadowlab_raster::NO_TRIANGLE)
+                .then(|| footprint(&setup, 1000, &scene.camera, eye.position[p], eye.normal[p]))
+                .flatten();
+            let bits = |f: &Option<Footprint>| {
+                f.map(|f| [f.total, f.perspective, f.projection].map(f64::to_bits))
+            };
+            assert_eq!(bits(measured), bits(&alone), "{technique}, pixel {p}");
+            defined += usize::from(alone.is_some());
+        }
+        assert!(defined > 10_000, "{technique}: {defined}");
     }
 }
