@@ -69,10 +69,10 @@ use shadowlab_shadow::homogeneous::quotient;
 use shadowlab_shadow::lanes::LANES;
 use shadowlab_shadow::logarithmic::LogarithmicMap;
 use shadowlab_shadow::paraboloid::ParaboloidMap;
-use shadowlab_shadow::{LightSetup, ShadowMapping};
+use shadowlab_shadow::{LaneMapping, LightSetup, ShadowMapping};
 
 use crate::exact_sum::ExactSum;
-use block::{LaneMapping, footprint_block};
+use block::footprint_block;
 
 mod block;
 

@@ -89,7 +89,7 @@ pub use render::{
 };
 pub use selection::{Beyond, Fade, FadeCurve, Selection, SelectionRule};
 pub use serving::{Served, served};
-pub use setup::{LightSetup, ProjectiveMapping, PsmReport, ShadowMapping, WarpReport};
+pub use setup::{LaneMapping, LightSetup, ProjectiveMapping, PsmReport, ShadowMapping, WarpReport};
 pub use snap::snap_to_texels;
 pub use technique::{
     BlendWidth, Engine, LogarithmicChoice, NearDistance, PresetChoices, ProductionVariant,

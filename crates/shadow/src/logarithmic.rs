@@ -314,8 +314,8 @@ mod tests {
         assert!(compared > 1000, "{compared}");
     }
 
-    /// Four points side by side ([`LogarithmicMap::at_lanes`]) give each point's derivative to the
-    /// bit, and are undefined exactly where it is `None`: spot and directional light spaces, κ = 0
+    /// Four points side by side ([`LogarithmicMap::ndc_lanes`], [`LogarithmicMap::at_lanes`]) give
+    /// each point's NDC and derivative to the bit, and are undefined exactly where they are `None`: spot and directional light spaces, κ = 0
     /// among the λ, points behind the spot light and on the eye's side of the reference point
     /// among defined ones.
     #[test]
@@ -330,7 +330,7 @@ mod tests {
                 DVec3::ZERO,
                 DVec3::Z,
             );
-        let (mut defined, mut undefined) = (0, 0);
+        let (mut defined, mut undefined, mut mapped) = (0, 0, 0);
         for round in 0..3000_usize {
             let lambda = [f64::INFINITY, 1e-3, 0.3, 1.0, 7.0, 1e3][round % 6];
             let kappa = 1.0 / lambda;
@@ -354,6 +354,14 @@ mod tests {
             let points: [DVec3; LANES] = std::array::from_fn(|_| random.vector(20.0));
             let directions: [[DVec3; LANES]; 3] =
                 std::array::from_fn(|_| std::array::from_fn(|_| random.vector(1.0)));
+            let (ndc, outside) = map.ndc_lanes(Vectors::of(&points));
+            let [x, y, z] = [ndc.x, ndc.y, ndc.z].map(|v| v.to_array());
+            for k in 0..LANES {
+                let lanes = (!outside[k]).then(|| [x[k], y[k], z[k]].map(f64::to_bits));
+                let one = map.ndc(points[k]).map(|n| n.to_array().map(f64::to_bits));
+                assert_eq!(lanes, one, "round {round}, lane {k}");
+                mapped += usize::from(one.is_some());
+            }
             let at = map.at_lanes(Vectors::of(&points));
             for direction in &directions {
                 let [dx, dy] = at
@@ -381,5 +389,6 @@ mod tests {
             defined > 10_000 && undefined > 2_000,
             "{defined} {undefined}"
         );
+        assert!(mapped > 3_000, "{mapped}");
     }
 }

@@ -99,13 +99,12 @@ impl LogarithmicMap {
         Some(DVec2::new(dx, dy))
     }
 
-    /// [`Self::ndc_derivative`] at four points at once (`lanes` module): what the derivatives at
-    /// a point share — `h`, `q`, `w` — for the directions [`LanesAt::ndc_derivative`] takes.
+    /// Each lane's `h = M·(p, 1)`, `q = h/h_w`, `τ` and `w = 1 + κτ` of four points, as
+    /// [`Self::light_point`] computes them one point at a time (`point_of` divided in every lane,
+    /// also where `h_w = 1`, which it skips: `x / 1 = x`).
     #[inline(always)]
-    #[must_use]
-    pub fn at_lanes(&self, world: Vectors) -> LanesAt<'_> {
+    fn light_lanes(&self, world: Vectors) -> ([f64x4; 4], Vectors, f64x4, f64x4) {
         let h = world.transformed(&self.world_to_light, 1.0);
-        // `point_of`: divided in every lane, also where `h_w = 1`, which it skips (`x / 1 = x`).
         let q = Vectors {
             x: h[0] / h[3],
             y: h[1] / h[3],
@@ -113,6 +112,39 @@ impl LogarithmicMap {
         };
         let tau = (f64x4::splat(self.z_max) - q.z) / f64x4::splat(self.depth);
         let w = f64x4::ONE + f64x4::splat(self.kappa) * tau;
+        (h, q, tau, w)
+    }
+
+    /// [`Self::ndc`] of four points (`lanes` module): each lane the one-point operations in
+    /// order, the warp's `ln_1p` the C library's per lane; and the lanes where `ndc` is `None`
+    /// (their coordinates are meaningless numbers). A unit test holds the two together.
+    #[inline(always)]
+    #[must_use]
+    pub fn ndc_lanes(&self, world: Vectors) -> (Vectors, [bool; LANES]) {
+        let (h, q, tau, w) = self.light_lanes(world);
+        let two = f64x4::splat(2.0);
+        let x = (two * q.x / w - f64x4::splat(self.left + self.right))
+            / f64x4::splat(self.right - self.left);
+        let warped = if self.kappa > 0.0 {
+            let product = (f64x4::splat(self.kappa) * tau).to_array();
+            f64x4::new(product.map(f64::ln_1p)) / f64x4::splat(self.log_range)
+        } else {
+            tau
+        };
+        let y = two * warped - f64x4::ONE;
+        let z = (f64x4::splat(self.y_max + self.y_min) - two * q.y)
+            / f64x4::splat(self.y_max - self.y_min);
+        let (h_w, w) = (h[3].to_array(), w.to_array());
+        let undefined = std::array::from_fn(|k| h_w[k] <= 0.0 || w[k].is_nan() || w[k] <= 0.0);
+        (Vectors { x, y, z }, undefined)
+    }
+
+    /// [`Self::ndc_derivative`] at four points at once (`lanes` module): what the derivatives at
+    /// a point share — `h`, `q`, `w` — for the directions [`LanesAt::ndc_derivative`] takes.
+    #[inline(always)]
+    #[must_use]
+    pub fn at_lanes(&self, world: Vectors) -> LanesAt<'_> {
+        let (h, q, _, w) = self.light_lanes(world);
         let (h_w, w_lanes) = (h[3].to_array(), w.to_array());
         LanesAt {
             map: self,

@@ -2,8 +2,10 @@
 //! exact non-projective mapping), and what it decided on the way.
 
 use glam::{DMat4, DVec3};
+use wide::f64x4;
 
 use crate::homogeneous::point_of;
+use crate::lanes::{LANES, Vectors};
 use crate::logarithmic_map::LogarithmicMap;
 use crate::paraboloid_map::ParaboloidMap;
 use crate::technique::Technique;
@@ -20,6 +22,46 @@ pub enum ShadowMapping {
     /// One hemisphere of a point light's dual-paraboloid map, evaluated exactly (see
     /// [`ParaboloidMap`]).
     Paraboloid(ParaboloidMap),
+}
+
+/// A [`ShadowMapping`] that maps four points at a time, in `wide` lanes (`lanes` module; each
+/// lane the one-point function's IEEE operations in its order, so its bits).
+#[derive(Clone, Copy, Debug)]
+pub enum LaneMapping<'a> {
+    /// World → GL clip space of a projective mapping.
+    Projective(&'a DMat4),
+    /// The logarithmic map.
+    Logarithmic(&'a LogarithmicMap),
+}
+
+impl LaneMapping<'_> {
+    /// [`ShadowMapping::window`] of four points, and the lanes where it is `None` (their
+    /// coordinates are meaningless numbers). A projective map's clip coordinates are divided in
+    /// every lane, also where `w = 1`, which `point_of` skips (`x / 1 = x`).
+    #[inline(always)]
+    #[must_use]
+    pub fn windows(self, points: Vectors) -> (Vectors, [bool; LANES]) {
+        let (ndc, undefined) = match self {
+            Self::Projective(m) => {
+                let [x, y, z, w] = points.transformed(m, 1.0);
+                let behind = w.to_array().map(|w| w <= 0.0);
+                let ndc = Vectors {
+                    x: x / w,
+                    y: y / w,
+                    z: z / w,
+                };
+                (ndc, behind)
+            }
+            Self::Logarithmic(map) => map.ndc_lanes(points),
+        };
+        let (one, half) = (f64x4::ONE, f64x4::splat(0.5));
+        let window = Vectors {
+            x: (ndc.x + one) * half,
+            y: (ndc.y + one) * half,
+            z: (ndc.z + one) * half,
+        };
+        (window, undefined)
+    }
 }
 
 /// A projective mapping: a view and a projection matrix, and their product formed once.
@@ -91,6 +133,17 @@ impl ShadowMapping {
             Self::Paraboloid(map) => map.ndc(world)?,
         };
         Some((ndc + DVec3::ONE) * 0.5)
+    }
+
+    /// The mapping as code that maps four points at a time takes it ([`LaneMapping`]); `None`
+    /// for a paraboloid hemisphere, which is mapped one point at a time.
+    #[must_use]
+    pub fn in_lanes(&self) -> Option<LaneMapping<'_>> {
+        match self {
+            Self::Projective(mapping) => Some(LaneMapping::Projective(&mapping.clip_from_world)),
+            Self::Logarithmic(map) => Some(LaneMapping::Logarithmic(map)),
+            Self::Paraboloid(_) => None,
+        }
     }
 
     /// Whether the map is made by casting a ray per texel (the logarithmic and paraboloid maps,

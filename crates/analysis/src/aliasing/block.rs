@@ -20,20 +20,12 @@
 //! operation traps.
 
 use glam::{DMat4, DVec3};
+use shadowlab_shadow::LaneMapping;
 use shadowlab_shadow::lanes::{LANES, Vectors};
-use shadowlab_shadow::logarithmic::{self, LogarithmicMap};
+use shadowlab_shadow::logarithmic;
 use wide::f64x4;
 
 use super::{Footprint, GRAZING_COS, Viewer};
-
-/// A mapping that [`footprint_block`] differentiates four points at a time.
-#[derive(Clone, Copy)]
-pub(super) enum LaneMapping<'a> {
-    /// World → GL clip space.
-    Projective(&'a DMat4),
-    /// The logarithmic map ([`LogarithmicMap::at_lanes`]).
-    Logarithmic(&'a LogarithmicMap),
-}
 
 /// A [`LaneMapping`] at four points: `At` of the one-pixel function, lane by lane.
 enum LanesAt<'a> {

@@ -1,5 +1,6 @@
-//! Four neighbouring pixels looked up in one projective map at once, by the nearest filter, PCF or
-//! the jittered disk with a slope-scaled bias (shadowlab's default lookup, and its filters).
+//! Four neighbouring pixels looked up in one projective or logarithmic map at once, by the nearest
+//! filter, PCF or the jittered disk with a slope-scaled bias (shadowlab's default lookup, and its
+//! filters).
 //!
 //! Such a lookup's arithmetic around its texel fetches — the receiver's window position, and the
 //! receiver's depth slope (two more windows and a 2 × 2 inverse; for the nearest filter only where
@@ -9,8 +10,9 @@
 //! and the four chains' latencies overlap.
 //!
 //! Each lane performs exactly the operations of the one-pixel functions — `ShadowMapping::window`
-//! (glam's `DMat4 · DVec4` sums its columns from `x` to `w`; a `w` of exactly 1 is divided by,
-//! which gives the dividend's bits, where the one-pixel function skips the division) and
+//! (`LaneMapping::windows`: glam's `DMat4 · DVec4` sums its columns from `x` to `w`; a `w` of
+//! exactly 1 is divided by, which gives the dividend's bits, where the one-pixel function skips
+//! the division; the logarithmic warp's `ln_1p` is the C library's, lane by lane) and
 //! `bias::depth_gradient` (glam's `DVec3::any_orthonormal_pair`, `DMat2::inverse`,
 //! `DMat2 · DVec2`, term by term) — in the same order, and neither Rust nor `wide` contracts a
 //! product and a sum into a fused multiply-add: every lane's decision is the one-pixel lookup's,
@@ -18,34 +20,20 @@
 //! them). Lanes that fail a test (a point behind the map's centre, a plane seen edge-on) compute
 //! meaningless numbers before being dropped, as no IEEE operation traps.
 
-use glam::{DMat4, DVec2, DVec3};
+use glam::{DVec2, DVec3};
 use wide::f64x4;
 
 use super::{Filter, Lookup, disk_mean, pcf_mean};
 use crate::bias::{DepthComparison, MAX_SLOPE, SLOPE_STEP, lit_whatever_the_slope};
 use crate::lanes::{LANES, Vectors};
 use crate::map::ShadowMap;
-
-/// Window positions of four points through a projective map: `ShadowMapping::window` lane by
-/// lane (module docs), with each lane's `clip.w <= 0` (behind the map's centre: no window).
-#[inline(always)]
-fn windows(m: &DMat4, points: Vectors) -> (Vectors, [bool; LANES]) {
-    let [x, y, z, w] = points.transformed(m, 1.0);
-    let (one, half) = (f64x4::ONE, f64x4::splat(0.5));
-    let window = Vectors {
-        x: (x / w + one) * half,
-        y: (y / w + one) * half,
-        z: (z / w + one) * half,
-    };
-    let w = w.to_array();
-    (window, std::array::from_fn(|k| w[k] <= 0.0))
-}
+use crate::setup::LaneMapping;
 
 /// `bias::depth_slope` of four receivers — points `world`, their windows `window`, normals
-/// `normal` — through the projective map `m` of `map` (module docs).
+/// `normal` — through `mapping`, the mapping of `map` (module docs).
 fn depth_slopes(
     map: &ShadowMap,
-    m: &DMat4,
+    mapping: LaneMapping<'_>,
     (world, window): (Vectors, Vectors),
     normal: &[DVec3; LANES],
 ) -> [f64; LANES] {
@@ -67,8 +55,8 @@ fn depth_slopes(
     let length = world.length().to_array();
     let step = f64x4::new(length.map(|l| SLOPE_STEP * l.max(1.0)));
     let side = f64x4::splat(f64::from(map.resolution));
-    let (p1, behind1) = windows(m, world.plus(t1.times(step)));
-    let (p2, behind2) = windows(m, world.plus(t2.times(step)));
+    let (p1, behind1) = mapping.windows(world.plus(t1.times(step)));
+    let (p2, behind2) = mapping.windows(world.plus(t2.times(step)));
     // In texels, less the receiver's own window position in texels.
     let (x0, y0) = (window.x * side, window.y * side);
     let (d1x, d1y, d1z) = (p1.x * side - x0, p1.y * side - y0, p1.z - window.z);
@@ -94,7 +82,7 @@ fn depth_slopes(
 impl Lookup {
     /// Whether [`Self::lit_fractions`] reads `map` four points at a time: a nearest, PCF or disk
     /// lookup with a slope-scaled bias that reads the points themselves (no receiver offset), in a
-    /// projective map.
+    /// map that maps four points at a time (projective or logarithmic: `ShadowMapping::in_lanes`).
     pub(crate) fn reads_together(&self, map: &ShadowMap) -> bool {
         matches!(
             (self.filter, self.bias.comparison),
@@ -103,7 +91,7 @@ impl Lookup {
                 DepthComparison::SlopeScaled { .. }
             )
         ) && !self.bias.moves_receiver()
-            && map.setup.mapping.clip_from_world().is_some()
+            && map.setup.mapping.in_lanes().is_some()
     }
 
     /// [`Lookup::lit_fraction`] of four points `world` with normals `normal` in `map`, if this
@@ -120,18 +108,18 @@ impl Lookup {
         if !self.reads_together(map) {
             return None;
         }
-        let (DepthComparison::SlopeScaled { constant, slope }, Some(m)) =
-            (self.bias.comparison, map.setup.mapping.clip_from_world())
+        let (DepthComparison::SlopeScaled { constant, slope }, Some(mapping)) =
+            (self.bias.comparison, map.setup.mapping.in_lanes())
         else {
             return None;
         };
         let points = Vectors::of(world);
-        let (window, behind) = windows(&m, points);
+        let (window, behind) = mapping.windows(points);
         let [x, y, z] = [window.x, window.y, window.z].map(f64x4::to_array);
         let side = f64::from(map.resolution);
         if self.filter != Filter::Nearest {
             // Every tap compares with the slope found up front (`Comparison::new`).
-            let slopes = depth_slopes(map, &m, (points, window), normal);
+            let slopes = depth_slopes(map, mapping, (points, window), normal);
             return Some(std::array::from_fn(|k| {
                 if behind[k] {
                     return 1.0;
@@ -160,7 +148,7 @@ impl Lookup {
         });
         let mut lit = [1.0; LANES];
         if undecided.iter().any(Option::is_some) {
-            let slopes = depth_slopes(map, &m, (points, window), normal);
+            let slopes = depth_slopes(map, mapping, (points, window), normal);
             for (k, base) in undecided.into_iter().enumerate() {
                 if let Some(base) = base {
                     let lit_through = z[k] <= base + slope * slopes[k];
@@ -179,21 +167,24 @@ mod tests {
     use shadowlab_test_random::SplitMix;
     use wide::f64x4;
 
-    use super::{LANES, Vectors, depth_slopes, windows};
+    use super::{LANES, Vectors, depth_slopes};
     use crate::bias::{Bias, MAX_SLOPE, depth_slope};
+    use crate::logarithmic_map::LogarithmicMap;
     use crate::lookup::{Filter, Lookup};
     use crate::map::ShadowMap;
     use crate::setup::{LightSetup, ProjectiveMapping, ShadowMapping};
     use crate::technique::Technique;
 
-    /// A map through `clip_from_world` holding `depths` (a square of them).
-    fn map(clip_from_world: DMat4, depths: &[f64]) -> ShadowMap {
+    /// The projective mapping through `clip_from_world`.
+    fn projective(clip_from_world: DMat4) -> ShadowMapping {
+        ShadowMapping::Projective(ProjectiveMapping::new(DMat4::IDENTITY, clip_from_world))
+    }
+
+    /// A map through `mapping` holding `depths` (a square of them).
+    fn map(mapping: ShadowMapping, depths: &[f64]) -> ShadowMap {
         let setup = LightSetup {
             technique: Technique::Uniform,
-            mapping: ShadowMapping::Projective(ProjectiveMapping::new(
-                DMat4::IDENTITY,
-                clip_from_world,
-            )),
+            mapping,
             gamma: 0.0,
             half_fov: 0.0,
             warp: None,
@@ -206,9 +197,10 @@ mod tests {
             .expect("a map")
     }
 
-    /// Round `round`'s map (near 0.4·I, so that most receivers land on it; every third affine)
-    /// holding one of `depths`, and four receivers: points on and off the map and behind its
-    /// centre, normals random, zero, NaN and edge-on.
+    /// Round `round`'s map (near 0.4·I, so that most receivers land on it; every third affine;
+    /// every fourth the logarithmic map with that light space, κ from 0 to 100) holding one of
+    /// `depths`, and four receivers: points on and off the map and behind its centre, normals
+    /// random, zero, NaN and edge-on.
     fn case(
         random: &mut SplitMix,
         round: usize,
@@ -247,7 +239,24 @@ mod tests {
                 _ => {}
             }
         }
-        (map(m, &depths[round % depths.len()]), world, normal)
+        let mapping = if round % 4 == 1 {
+            let kappa = [0.0, 0.3, 5.0, 100.0][round / 4 % 4];
+            ShadowMapping::Logarithmic(LogarithmicMap {
+                world_to_light: m,
+                light_to_world: m.inverse(),
+                z_max: 0.6,
+                depth: random.range(1.0, 1.4),
+                kappa,
+                log_range: f64::ln_1p(kappa),
+                left: random.range(-0.7, -0.5),
+                right: random.range(0.5, 0.7),
+                y_min: random.range(-0.7, -0.5),
+                y_max: random.range(0.5, 0.7),
+            })
+        } else {
+            projective(m)
+        };
+        (map(mapping, &depths[round % depths.len()]), world, normal)
     }
 
     /// Random depths for maps of 16², 100² and 300² texels.
@@ -266,9 +275,13 @@ mod tests {
         let mut sloped = 0;
         for round in 0..3000 {
             let (map, world, normal) = case(&mut random, round, &depths);
-            let m = map.setup.mapping.clip_from_world().expect("projective");
-            let (window, behind) = windows(&m, Vectors::of(&world));
-            let slopes = depth_slopes(&map, &m, (Vectors::of(&world), window), &normal);
+            let mapping = map
+                .setup
+                .mapping
+                .in_lanes()
+                .expect("projective or logarithmic");
+            let (window, behind) = mapping.windows(Vectors::of(&world));
+            let slopes = depth_slopes(&map, mapping, (Vectors::of(&world), window), &normal);
             let [x, y, z] = [window.x, window.y, window.z].map(f64x4::to_array);
             for k in 0..LANES {
                 let one = map.setup.mapping.window(world[k]);
@@ -380,7 +393,7 @@ mod tests {
             Bias::parse("slope:2,1e-5+normal:1").expect("a bias"),
             Filter::Nearest,
         );
-        let map = map(DMat4::IDENTITY, &depths[0]);
+        let map = map(projective(DMat4::IDENTITY), &depths[0]);
         assert!(
             moved
                 .lit_fractions(&map, &[DVec3::ZERO; LANES], &[DVec3::Y; LANES])
