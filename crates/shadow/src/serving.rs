@@ -34,8 +34,40 @@ impl Served {
 /// visible point `world` seen by `eye`, as `selection` says; `None` if the point lies beyond the
 /// shadowed range ([`Beyond::Lit`]) and is lit. A blend band applies by eye depth after either
 /// rule: a point in the overlap of its partition and the next is blended from both.
+///
+/// One map serving everything (the only one, the last serving beyond it, no fade) is answered
+/// without reading the point: the rule's answer for every point.
 #[must_use]
 pub fn served<T>(
+    partitions: &[T],
+    partition: impl Fn(&T) -> &Partition,
+    selection: &Selection,
+    eye: &Eye,
+    world: DVec3,
+) -> Option<Served> {
+    if serves_everything(partitions, selection) {
+        return Some(SOLE_MAP);
+    }
+    served_by_rule(partitions, partition, selection, eye, world)
+}
+
+/// What [`served`] gives every point when one map serves everything.
+const SOLE_MAP: Served = Served {
+    index: 0,
+    blend: None,
+    fade: 0.0,
+};
+
+/// Whether one partition serves every point, unblended and unfaded: the only partition, the last
+/// serving beyond it ([`Beyond::Last`]), no fade. Then both rules pick it (the depth rule by
+/// `Beyond::Last` where the point lies beyond its far end; a face group of one member is that
+/// member, however deep its face holds the point), no next partition blends, and the fade is 0.
+fn serves_everything<T>(partitions: &[T], selection: &Selection) -> bool {
+    partitions.len() == 1 && selection.beyond == Beyond::Last && selection.fade.is_none()
+}
+
+/// [`served`] by the selection's rule, for any partitions.
+fn served_by_rule<T>(
     partitions: &[T],
     partition: impl Fn(&T) -> &Partition,
     selection: &Selection,
@@ -130,4 +162,97 @@ fn blend_with_next<T>(
     }
     let weight = (depth - band_start) / (this.far - band_start);
     (weight > 0.0).then(|| (face_serving(partitions, partition, next, world), weight))
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::{DMat4, DVec3};
+    use shadowlab_hull::{Perspective, ViewPose};
+    use shadowlab_test_random::SplitMix;
+
+    use super::{SOLE_MAP, served_by_rule, serves_everything};
+    use crate::input::Eye;
+    use crate::omni::LightFace;
+    use crate::partition::{CullingSphere, Partition, Region};
+    use crate::selection::{Beyond, Fade, FadeCurve, Selection, SelectionRule};
+    use crate::setup::{LightSetup, ProjectiveMapping, ShadowMapping};
+    use crate::technique::Technique;
+
+    /// Where one map serves everything, the rule gives every point — in front of the eye, behind
+    /// it, beyond the partition's far end, outside its face — what `served` gives without looking:
+    /// by depth and by containment (a culling sphere or the map's volume), blended or not, with and
+    /// without a face. Where it does not
+    /// (beyond lit, faded), `served` is the rule.
+    #[test]
+    fn a_sole_map_serves_every_point_as_the_rule_would() {
+        let setup = LightSetup {
+            technique: Technique::Uniform,
+            mapping: ShadowMapping::Projective(ProjectiveMapping::new(
+                DMat4::IDENTITY,
+                DMat4::IDENTITY,
+            )),
+            gamma: 0.0,
+            half_fov: 0.0,
+            warp: None,
+            psm: None,
+            focus_body: Vec::new(),
+        };
+        let eye = Eye {
+            pose: ViewPose::look_to(DVec3::ZERO, DVec3::NEG_Z, DVec3::Y).expect("a pose"),
+            projection: Perspective::new(1.0, 1.0, 0.1, 100.0).expect("a projection"),
+        };
+        let mut random = SplitMix(0x5eed_0000_0000_5e1e);
+        let (mut sole, mut ruled) = (0, 0);
+        for round in 0..4000_usize {
+            let near = random.range(0.1, 5.0);
+            let face = (round % 3 == 0).then(|| {
+                Region::LightFace(LightFace {
+                    name: "front",
+                    light: random.vector(5.0),
+                    axis: random.vector(1.0).normalize_or(DVec3::Z),
+                    across: None,
+                })
+            });
+            let partition = Partition {
+                near,
+                far: near + random.range(0.1, 50.0),
+                face,
+                sphere: (round % 6 == 1).then(|| CullingSphere {
+                    centre: random.vector(10.0),
+                    radius: random.range(1.0, 30.0),
+                }),
+                setup: setup.clone(),
+            };
+            let selection = Selection {
+                rule: if round % 2 == 0 {
+                    SelectionRule::Depth
+                } else {
+                    SelectionRule::Containing
+                },
+                blend: round % 4 < 2,
+                beyond: if round % 5 == 0 {
+                    Beyond::Lit
+                } else {
+                    Beyond::Last
+                },
+                fade: (round % 7 == 0).then_some(Fade {
+                    start: 10.0,
+                    end: 20.0,
+                    curve: FadeCurve::SmoothstepDepth,
+                }),
+            };
+            let world = random.vector(80.0);
+            let parts = [partition];
+            let rule = served_by_rule(&parts, |p| p, &selection, &eye, world);
+            let answer = super::served(&parts, |p| p, &selection, &eye, world);
+            assert_eq!(answer, rule, "round {round}");
+            if serves_everything(&parts, &selection) {
+                assert_eq!(answer, Some(SOLE_MAP), "round {round}");
+                sole += 1;
+            } else {
+                ruled += 1;
+            }
+        }
+        assert!(sole > 1000 && ruled > 1000, "{sole} {ruled}");
+    }
 }
