@@ -20,7 +20,7 @@ use std::fmt::Write as _;
 use crate::error::PlotError;
 use crate::figure::{Color, Scale};
 use crate::font::{FAMILY, text_width};
-use crate::render::{format_tick, rasterise, render_error};
+use crate::render::{encode_png, format_tick, rasterise};
 
 /// The margin around everything, in pixels.
 pub const MARGIN: u32 = 14;
@@ -572,7 +572,7 @@ pub fn render_picture(picture: &Picture) -> Result<Vec<u8>, PlotError> {
             *target = resvg::tiny_skia::ColorU8::from_rgba(*r, *g, *b, 255).premultiply();
         }
     }
-    pixmap.encode_png().map_err(render_error)
+    encode_png(&pixmap)
 }
 
 #[cfg(test)]

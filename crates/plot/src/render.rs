@@ -88,9 +88,30 @@ pub fn render_svg(figure: &Figure) -> Result<String, PlotError> {
     Ok(svg.replacen(&canvas, &nominal, 1))
 }
 
-/// The SVG rasterised at one pixel per SVG unit, as PNG bytes.
+/// The SVG rasterised at one pixel per SVG unit, as PNG bytes ([`encode_png`]).
 pub fn render_png(svg: &str) -> Result<Vec<u8>, PlotError> {
-    rasterise(svg)?.encode_png().map_err(render_error)
+    encode_png(&rasterise(svg)?)
+}
+
+/// A rendered pixmap as PNG bytes: 8-bit RGBA, each pixel demultiplied as
+/// `tiny_skia::Pixmap::encode_png` does it, compressed with the `png` crate's fast setting and
+/// adaptive filter — the settings of the raw pictures (`shadowlab_raster::image_out`). The same
+/// pixels as tiny-skia's own encoder, whose default compression took most of a report's drawing
+/// time (docs/benchmarks.md); deterministic.
+pub(crate) fn encode_png(pixmap: &resvg::tiny_skia::Pixmap) -> Result<Vec<u8>, PlotError> {
+    let demultiplied = pixmap.clone().take_demultiplied();
+    let mut bytes = Vec::new();
+    let mut encoder = png::Encoder::new(&mut bytes, pixmap.width(), pixmap.height());
+    encoder.set_color(png::ColorType::Rgba);
+    encoder.set_depth(png::BitDepth::Eight);
+    encoder.set_compression(png::Compression::Fast);
+    encoder.set_filter(png::Filter::Adaptive);
+    let mut writer = encoder.write_header().map_err(render_error)?;
+    writer
+        .write_image_data(&demultiplied)
+        .map_err(render_error)?;
+    writer.finish().map_err(render_error)?;
+    Ok(bytes)
 }
 
 /// The SVG rasterised at one pixel per SVG unit, with the embedded font as every family.
@@ -293,6 +314,35 @@ pub(crate) fn format_tick(value: f64) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Claim: [`encode_png`] stores what tiny-skia's own encoder stores, pixel for pixel (both
+    /// decoded), for every opacity — demultiplied alike — and a rendered figure; and it is
+    /// deterministic.
+    #[test]
+    fn the_encoder_keeps_tiny_skias_pixels() {
+        use resvg::tiny_skia::{Pixmap, PremultipliedColorU8};
+        let (width, height) = (97, 61);
+        let mut pixmap = Pixmap::new(width, height).expect("a pixmap");
+        for (k, pixel) in pixmap.pixels_mut().iter_mut().enumerate() {
+            let alpha = u8::try_from(k * 37 % 256).expect("a byte");
+            let channel =
+                |m: usize| u8::try_from(k * m % (usize::from(alpha) + 1)).expect("a byte");
+            *pixel = PremultipliedColorU8::from_rgba(channel(7), channel(13), channel(29), alpha)
+                .expect("premultiplied");
+        }
+        let figure = rasterise(
+            "<svg width=\"40\" height=\"30\" xmlns=\"http://www.w3.org/2000/svg\">\
+             <circle cx=\"20\" cy=\"15\" r=\"9\" fill=\"#c04020\" fill-opacity=\"0.6\"/></svg>",
+        )
+        .expect("a figure");
+        for pixmap in [pixmap, figure] {
+            let ours = encode_png(&pixmap).expect("encoded");
+            let theirs = pixmap.encode_png().expect("encoded");
+            let decoded = |png: &[u8]| Pixmap::decode_png(png).expect("a PNG").data().to_vec();
+            assert_eq!(decoded(&ours), decoded(&theirs));
+            assert_eq!(ours, encode_png(&pixmap).expect("encoded"));
+        }
+    }
 
     #[test]
     fn tick_labels_are_short() {
