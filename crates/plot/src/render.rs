@@ -88,7 +88,8 @@ pub fn render_svg(figure: &Figure) -> Result<String, PlotError> {
     Ok(svg.replacen(&canvas, &nominal, 1))
 }
 
-/// The SVG rasterised at one pixel per SVG unit, as PNG bytes ([`encode_png`]).
+/// The SVG rasterised at one pixel per SVG unit, as PNG bytes: 8-bit RGBA, the same pixels as
+/// tiny-skia's own encoder, compressed with the `png` crate's fast setting.
 pub fn render_png(svg: &str) -> Result<Vec<u8>, PlotError> {
     encode_png(&rasterise(svg)?)
 }
