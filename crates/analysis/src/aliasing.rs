@@ -122,13 +122,12 @@ impl<'a> Prepared<'a> {
         }
     }
 
-    /// The mapping as [`footprint_block`] takes it, four pixels at a time; `None` for a paraboloid
-    /// hemisphere, which is differentiated one pixel at a time.
-    fn in_lanes(&self) -> Option<LaneMapping<'_>> {
+    /// The mapping as [`footprint_block`] takes it, four pixels at a time.
+    fn in_lanes(&self) -> LaneMapping<'_> {
         match self {
-            Self::Projective(m) => Some(LaneMapping::Projective(m)),
-            Self::Logarithmic(map) => Some(LaneMapping::Logarithmic(map)),
-            Self::Paraboloid(_) => None,
+            Self::Projective(m) => LaneMapping::Projective(m),
+            Self::Logarithmic(map) => LaneMapping::Logarithmic(map),
+            Self::Paraboloid(map) => LaneMapping::Paraboloid(map),
         }
     }
 
@@ -328,8 +327,8 @@ pub fn footprints(
 /// [`footprints`] through one of several maps per pixel — `maps[k]` being a setup and its map
 /// side, `serving(pixel)` the index of the map that serves pixel `pixel` (`None`: no footprint):
 /// each pixel's footprint is computed once, through its own map, as a partitioned shadow looks it
-/// up. Four neighbouring pixels served by one projective or logarithmic map are measured side by
-/// side (the `block` module: the same bits as one by one).
+/// up. Four neighbouring pixels served by one map are measured side by side (the `block` module:
+/// the same bits as one by one).
 #[must_use]
 pub fn footprints_served(
     maps: &[(&LightSetup, u32)],
@@ -369,11 +368,10 @@ pub fn footprints_served(
                 if let Some(index) = served[0]
                     && served.iter().all(|&s| s == Some(index))
                     && let (mapping, resolution) = &mappings[index]
-                    && let Some(mapping) = mapping.in_lanes()
                 {
                     let at = |field: &[DVec3]| std::array::from_fn(|k| field[first + k]);
                     return footprint_block(
-                        mapping,
+                        mapping.in_lanes(),
                         *resolution,
                         &viewer,
                         &at(&eye.position),

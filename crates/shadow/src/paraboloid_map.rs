@@ -3,6 +3,9 @@
 //! [`crate::paraboloid`] plans it.
 
 use glam::{DVec2, DVec3};
+use wide::f64x4;
+
+use crate::lanes::{LANES, Vectors};
 
 /// One hemisphere's paraboloid map: the light, the hemisphere's frame and its depth range.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -72,6 +75,55 @@ impl ParaboloidMap {
         ))
     }
 
+    /// [`Self::ndc`] of four points (`lanes` module): each lane the one-point operations in order;
+    /// and the lanes where `ndc` is `None` (their coordinates are meaningless numbers). A unit test
+    /// holds the two together.
+    #[inline(always)]
+    #[must_use]
+    pub fn ndc_lanes(&self, world: Vectors) -> (Vectors, [bool; LANES]) {
+        let d = world.minus(Vectors::splat(self.light));
+        let r = d.length();
+        let [x, y, z] = self.axes.map(Vectors::splat);
+        let denominator = r + z.dot(d);
+        let depth = f64x4::splat(2.0) * (r - f64x4::splat(self.near))
+            / f64x4::splat(self.far - self.near)
+            - f64x4::ONE;
+        let ndc = Vectors {
+            x: x.dot(d) / denominator,
+            y: y.dot(d) / denominator,
+            z: depth,
+        };
+        let (r, denominator) = (r.to_array(), denominator.to_array());
+        (
+            ndc,
+            std::array::from_fn(|k| r[k] == 0.0 || denominator[k] <= 0.0),
+        )
+    }
+
+    /// [`Self::ndc_derivative`] at four points at once (`lanes` module): what the derivatives at
+    /// a point share — `n`, `r`, `1 + n_z` — for the directions
+    /// [`ParaboloidLanesAt::ndc_derivative`] takes.
+    #[inline(always)]
+    #[must_use]
+    pub fn at_lanes(&self, world: Vectors) -> ParaboloidLanesAt<'_> {
+        let d = world.minus(Vectors::splat(self.light));
+        let r = d.length();
+        let n = Vectors {
+            x: d.x / r,
+            y: d.y / r,
+            z: d.z / r,
+        };
+        let denominator = f64x4::ONE + Vectors::splat(self.axes[2]).dot(n);
+        let (r_lanes, denominator_lanes) = (r.to_array(), denominator.to_array());
+        ParaboloidLanesAt {
+            map: self,
+            n,
+            r,
+            denominator,
+            undefined: std::array::from_fn(|k| r_lanes[k] == 0.0 || denominator_lanes[k] <= 0.0),
+        }
+    }
+
     /// The NDC depth of a point at distance `r` from the light.
     fn ndc_of_distance(&self, r: f64) -> f64 {
         2.0 * (r - self.near) / (self.far - self.near) - 1.0
@@ -122,5 +174,107 @@ impl ParaboloidMap {
             (axis.dot(dn) * denominator - axis.dot(n) * dnz) / (denominator * denominator)
         };
         Some(DVec2::new(along(x), along(y)))
+    }
+}
+
+/// A paraboloid hemisphere at four points ([`ParaboloidMap::at_lanes`]): each lane's unit
+/// direction `n` from the light, distance `r` and `1 + n_z`, as
+/// [`ParaboloidMap::ndc_derivative`] computes them.
+#[derive(Clone, Copy, Debug)]
+pub struct ParaboloidLanesAt<'a> {
+    map: &'a ParaboloidMap,
+    n: Vectors,
+    r: f64x4,
+    denominator: f64x4,
+    undefined: [bool; LANES],
+}
+
+impl ParaboloidLanesAt<'_> {
+    /// The lanes where [`ParaboloidMap::ndc_derivative`] is `None` (at the light, or at the
+    /// opposite pole): their derivatives are meaningless numbers.
+    #[must_use]
+    pub fn undefined(&self) -> [bool; LANES] {
+        self.undefined
+    }
+
+    /// [`ParaboloidMap::ndc_derivative`] along `direction` (one per lane): `(ẋ, ẏ)` per lane, each
+    /// lane the one-point function's operations in its order, so its bits wherever it is defined.
+    #[inline(always)]
+    #[must_use]
+    pub fn ndc_derivative(&self, direction: Vectors) -> [f64x4; 2] {
+        let (n, r, denominator) = (self.n, self.r, self.denominator);
+        let towards = n.dot(direction);
+        let dn = direction.minus(n.times(towards));
+        let dn = Vectors {
+            x: dn.x / r,
+            y: dn.y / r,
+            z: dn.z / r,
+        };
+        let [x, y, z] = self.map.axes.map(Vectors::splat);
+        let dnz = z.dot(dn);
+        let along = |axis: Vectors| {
+            (axis.dot(dn) * denominator - axis.dot(n) * dnz) / (denominator * denominator)
+        };
+        [along(x), along(y)]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::DVec3;
+    use shadowlab_test_random::SplitMix;
+
+    use super::ParaboloidMap;
+    use crate::lanes::{LANES, Vectors};
+
+    /// Four points side by side ([`ParaboloidMap::ndc_lanes`], [`ParaboloidMap::at_lanes`]) give
+    /// each point's NDC and derivative to the bit, and are undefined exactly where they are
+    /// `None`: random hemispheres, points around the light, at it and at the opposite pole among
+    /// them.
+    #[test]
+    fn four_points_side_by_side_are_each_point_alone() {
+        let mut random = SplitMix(0x5eed_0000_0000_9a2b);
+        let (mut mapped, mut undefined, mut derivatives) = (0, 0, 0);
+        for round in 0..3000_usize {
+            let light = random.vector(3.0);
+            let axis = random.vector(1.0).normalize_or(DVec3::Y);
+            let near = random.range(0.01, 1.0);
+            let map = ParaboloidMap::new(light, axis, near, near + random.range(1.0, 50.0));
+            let points: [DVec3; LANES] = std::array::from_fn(|k| match (round + k) % 7 {
+                0 => light,
+                1 => light - axis * random.range(0.1, 5.0),
+                _ => light + random.vector(10.0),
+            });
+            let (ndc, outside) = map.ndc_lanes(Vectors::of(&points));
+            let [x, y, z] = [ndc.x, ndc.y, ndc.z].map(|v| v.to_array());
+            for k in 0..LANES {
+                let lanes = (!outside[k]).then(|| [x[k], y[k], z[k]].map(f64::to_bits));
+                let one = map.ndc(points[k]).map(|n| n.to_array().map(f64::to_bits));
+                assert_eq!(lanes, one, "round {round}, lane {k}");
+                mapped += usize::from(one.is_some());
+                undefined += usize::from(one.is_none());
+            }
+            let at = map.at_lanes(Vectors::of(&points));
+            let direction: [DVec3; LANES] = std::array::from_fn(|_| random.vector(1.0));
+            let [dx, dy] = at
+                .ndc_derivative(Vectors::of(&direction))
+                .map(|v| v.to_array());
+            for k in 0..LANES {
+                let one = map.ndc_derivative(points[k], direction[k]);
+                assert_eq!(at.undefined()[k], one.is_none(), "round {round}, lane {k}");
+                if let Some(one) = one {
+                    assert_eq!(
+                        (dx[k].to_bits(), dy[k].to_bits()),
+                        (one.x.to_bits(), one.y.to_bits()),
+                        "round {round}, lane {k}"
+                    );
+                    derivatives += 1;
+                }
+            }
+        }
+        assert!(
+            mapped > 5000 && undefined > 1000 && derivatives > 5000,
+            "{mapped} {undefined} {derivatives}"
+        );
     }
 }

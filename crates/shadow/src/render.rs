@@ -590,10 +590,7 @@ pub fn lit_with(shadow: &LightShadow, lookups: &[Lookup], eye: &Eye, image: &Eye
     let mut lit: Vec<f64> = rayon::iter::repeat_n(1.0, image.triangle.len()).collect();
     // Whether four pixels served by one map may be looked up together (`lit_rows_together`),
     // decided once: the path every other lookup takes is left as it was.
-    let together = lookups
-        .iter()
-        .zip(&shadow.maps)
-        .any(|(lookup, (_, map))| lookup.reads_together(map));
+    let together = lookups.iter().any(Lookup::reads_together);
     lit.par_chunks_mut(width * LOOKUP_ROWS)
         .enumerate()
         .for_each(|(chunk, rows)| {

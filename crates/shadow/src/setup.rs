@@ -32,6 +32,8 @@ pub enum LaneMapping<'a> {
     Projective(&'a DMat4),
     /// The logarithmic map.
     Logarithmic(&'a LogarithmicMap),
+    /// A paraboloid hemisphere.
+    Paraboloid(&'a ParaboloidMap),
 }
 
 impl LaneMapping<'_> {
@@ -53,6 +55,7 @@ impl LaneMapping<'_> {
                 (ndc, behind)
             }
             Self::Logarithmic(map) => map.ndc_lanes(points),
+            Self::Paraboloid(map) => map.ndc_lanes(points),
         };
         let (one, half) = (f64x4::ONE, f64x4::splat(0.5));
         let window = Vectors {
@@ -135,14 +138,13 @@ impl ShadowMapping {
         Some((ndc + DVec3::ONE) * 0.5)
     }
 
-    /// The mapping as code that maps four points at a time takes it ([`LaneMapping`]); `None`
-    /// for a paraboloid hemisphere, which is mapped one point at a time.
+    /// The mapping as code that maps four points at a time takes it ([`LaneMapping`]).
     #[must_use]
-    pub fn in_lanes(&self) -> Option<LaneMapping<'_>> {
+    pub fn in_lanes(&self) -> LaneMapping<'_> {
         match self {
-            Self::Projective(mapping) => Some(LaneMapping::Projective(&mapping.clip_from_world)),
-            Self::Logarithmic(map) => Some(LaneMapping::Logarithmic(map)),
-            Self::Paraboloid(_) => None,
+            Self::Projective(mapping) => LaneMapping::Projective(&mapping.clip_from_world),
+            Self::Logarithmic(map) => LaneMapping::Logarithmic(map),
+            Self::Paraboloid(map) => LaneMapping::Paraboloid(map),
         }
     }
 

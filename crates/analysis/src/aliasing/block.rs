@@ -1,5 +1,5 @@
 //! A pixel's footprint ([`footprint_of`](super::footprint_of) of [`local`](super::local)) through a
-//! projective or the logarithmic map, for four pixels at once.
+//! projective, the logarithmic or a paraboloid map, for four pixels at once.
 //!
 //! The footprint's arithmetic is a long chain of products, divisions and square roots per pixel
 //! (three derivatives, each a division; a normalisation, two projections onto the plane, two
@@ -22,7 +22,7 @@
 use glam::{DMat4, DVec3};
 use shadowlab_shadow::LaneMapping;
 use shadowlab_shadow::lanes::{LANES, Vectors};
-use shadowlab_shadow::logarithmic;
+use shadowlab_shadow::{logarithmic, paraboloid};
 use wide::f64x4;
 
 use super::{Footprint, GRAZING_COS, Viewer};
@@ -33,6 +33,8 @@ enum LanesAt<'a> {
     Projective { m: &'a DMat4, clip: [f64x4; 4] },
     /// The logarithmic map at the points.
     Logarithmic(logarithmic::LanesAt<'a>),
+    /// A paraboloid hemisphere at the points.
+    Paraboloid(paraboloid::ParaboloidLanesAt<'a>),
 }
 
 impl LanesAt<'_> {
@@ -43,11 +45,12 @@ impl LanesAt<'_> {
                 clip: points.transformed(m, 1.0),
             },
             LaneMapping::Logarithmic(map) => LanesAt::Logarithmic(map.at_lanes(points)),
+            LaneMapping::Paraboloid(map) => LanesAt::Paraboloid(map.at_lanes(points)),
         }
     }
 
     /// The lanes the mapping does not differentiate at: behind a projective map's centre (clip
-    /// `w <= 0`), where the logarithmic map's derivative is `None`.
+    /// `w <= 0`), where the logarithmic or paraboloid map's derivative is `None`.
     fn undefined(&self) -> [bool; LANES] {
         match self {
             Self::Projective { clip, .. } => {
@@ -55,13 +58,15 @@ impl LanesAt<'_> {
                 std::array::from_fn(|k| w[k] <= 0.0)
             }
             Self::Logarithmic(at) => at.undefined(),
+            Self::Paraboloid(at) => at.undefined(),
         }
     }
 
     /// `At::derivative` in texels: the window coordinates' derivative along `direction`, times
     /// `texels`. A projective map's is divided in every lane, also where `w = 1`, which the
     /// one-pixel function skips (`quotient`): `x / 1 = x`, and one vector division serves four
-    /// lanes. The logarithmic map's NDC derivative is halved into window units, as there.
+    /// lanes. The logarithmic and paraboloid maps' NDC derivatives are halved into window units, as
+    /// there.
     #[inline(always)]
     fn derivative(&self, direction: Vectors, texels: f64x4) -> [f64x4; 2] {
         let half = f64x4::splat(0.5);
@@ -73,6 +78,7 @@ impl LanesAt<'_> {
                 [d(0), d(1)]
             }
             Self::Logarithmic(at) => at.ndc_derivative(direction).map(|d| d * half * texels),
+            Self::Paraboloid(at) => at.ndc_derivative(direction).map(|d| d * half * texels),
         }
     }
 }

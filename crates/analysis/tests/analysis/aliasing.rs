@@ -13,7 +13,7 @@ use shadowlab_analysis::aliasing::{
 };
 use shadowlab_hull::{Aabb, NdcDepth, Perspective, ViewPose};
 use shadowlab_params::ParameterRule;
-use shadowlab_scene::{Camera, Scene, procedural};
+use shadowlab_scene::{Camera, Scene, SceneLight, procedural};
 use shadowlab_shadow::{
     Eye, FocusPolicy, LightSetup, LightSource, PlanInput, ShadowError, Technique, WarpChoice,
     eye_pass, measure, plan,
@@ -510,13 +510,23 @@ fn footprints_are_the_same_on_any_thread_count() {
 }
 
 /// Claim: `footprints`, which measures four neighbouring pixels side by side, gives every pixel
-/// the bits of `footprint` at that pixel alone, through a LiSPSM map and a logarithmic one.
+/// the bits of `footprint` at that pixel alone, through a LiSPSM map and a logarithmic one under
+/// the sun, and a paraboloid hemisphere of a point light above the box.
 #[test]
 fn footprints_are_each_pixels_footprint_to_the_bit() {
-    let scene = ground_with_a_box();
-    let (eye, _) = eye_pass(&scene).unwrap();
-    for technique in [Technique::Lispsm(WarpChoice::PAPER), Technique::LOGARITHMIC] {
-        let setup = setup_of(&scene, technique);
+    let sunlit = ground_with_a_box();
+    let mut lamp = sunlit.clone();
+    lamp.lights = vec![SceneLight::Point {
+        position: DVec3::new(-2.0, 6.0, -6.0),
+        range: None,
+    }];
+    for (scene, technique) in [
+        (&sunlit, Technique::Lispsm(WarpChoice::PAPER)),
+        (&sunlit, Technique::LOGARITHMIC),
+        (&lamp, Technique::DualParaboloid),
+    ] {
+        let (eye, _) = eye_pass(scene).unwrap();
+        let setup = setup_of(scene, technique);
         let all = footprints(&setup, 1000, &eye, &scene.camera);
         let mut defined = 0;
         for (p, measured) in all.iter().enumerate() {

@@ -1,6 +1,6 @@
-//! Four neighbouring pixels looked up in one projective or logarithmic map at once, by the nearest
-//! filter, PCF or the jittered disk with a slope-scaled bias (shadowlab's default lookup, and its
-//! filters).
+//! Four neighbouring pixels looked up in one map at once — projective, logarithmic or a paraboloid
+//! hemisphere — by the nearest filter, PCF or the jittered disk with a slope-scaled bias
+//! (shadowlab's default lookup, and its filters).
 //!
 //! Such a lookup's arithmetic around its texel fetches — the receiver's window position, and the
 //! receiver's depth slope (two more windows and a 2 × 2 inverse; for the nearest filter only where
@@ -80,10 +80,10 @@ fn depth_slopes(
 }
 
 impl Lookup {
-    /// Whether [`Self::lit_fractions`] reads `map` four points at a time: a nearest, PCF or disk
-    /// lookup with a slope-scaled bias that reads the points themselves (no receiver offset), in a
-    /// map that maps four points at a time (projective or logarithmic: `ShadowMapping::in_lanes`).
-    pub(crate) fn reads_together(&self, map: &ShadowMap) -> bool {
+    /// Whether [`Self::lit_fractions`] reads a map four points at a time: a nearest, PCF or disk
+    /// lookup with a slope-scaled bias that reads the points themselves (no receiver offset), in any
+    /// map (`ShadowMapping::in_lanes`).
+    pub(crate) fn reads_together(&self) -> bool {
         matches!(
             (self.filter, self.bias.comparison),
             (
@@ -91,7 +91,6 @@ impl Lookup {
                 DepthComparison::SlopeScaled { .. }
             )
         ) && !self.bias.moves_receiver()
-            && map.setup.mapping.in_lanes().is_some()
     }
 
     /// [`Lookup::lit_fraction`] of four points `world` with normals `normal` in `map`, if this
@@ -105,14 +104,13 @@ impl Lookup {
         world: &[DVec3; LANES],
         normal: &[DVec3; LANES],
     ) -> Option<[f64; LANES]> {
-        if !self.reads_together(map) {
+        if !self.reads_together() {
             return None;
         }
-        let (DepthComparison::SlopeScaled { constant, slope }, Some(mapping)) =
-            (self.bias.comparison, map.setup.mapping.in_lanes())
-        else {
+        let DepthComparison::SlopeScaled { constant, slope } = self.bias.comparison else {
             return None;
         };
+        let mapping = map.setup.mapping.in_lanes();
         let points = Vectors::of(world);
         let (window, behind) = mapping.windows(points);
         let [x, y, z] = [window.x, window.y, window.z].map(f64x4::to_array);
@@ -172,6 +170,7 @@ mod tests {
     use crate::logarithmic_map::LogarithmicMap;
     use crate::lookup::{Filter, Lookup};
     use crate::map::ShadowMap;
+    use crate::paraboloid_map::ParaboloidMap;
     use crate::setup::{LightSetup, ProjectiveMapping, ShadowMapping};
     use crate::technique::Technique;
 
@@ -198,8 +197,8 @@ mod tests {
     }
 
     /// Round `round`'s map (near 0.4·I, so that most receivers land on it; every third affine;
-    /// every fourth the logarithmic map with that light space, κ from 0 to 100) holding one of
-    /// `depths`, and four receivers: points on and off the map and behind its centre, normals
+    /// every fourth the logarithmic map with that light space, κ from 0 to 100, and every fourth
+    /// a paraboloid hemisphere under the receivers) holding one of `depths`, and four receivers: points on and off the map and behind its centre, normals
     /// random, zero, NaN and edge-on.
     fn case(
         random: &mut SplitMix,
@@ -253,6 +252,15 @@ mod tests {
                 y_min: random.range(-0.7, -0.5),
                 y_max: random.range(0.5, 0.7),
             })
+        } else if round % 4 == 3 {
+            let light = DVec3::new(0.0, -2.0, 0.0) + random.vector(0.3);
+            let axis = (DVec3::Y + random.vector(0.2)).normalize();
+            ShadowMapping::Paraboloid(ParaboloidMap::new(
+                light,
+                axis,
+                random.range(0.1, 0.5),
+                random.range(4.0, 6.0),
+            ))
         } else {
             projective(m)
         };
@@ -275,11 +283,7 @@ mod tests {
         let mut sloped = 0;
         for round in 0..3000 {
             let (map, world, normal) = case(&mut random, round, &depths);
-            let mapping = map
-                .setup
-                .mapping
-                .in_lanes()
-                .expect("projective or logarithmic");
+            let mapping = map.setup.mapping.in_lanes();
             let (window, behind) = mapping.windows(Vectors::of(&world));
             let slopes = depth_slopes(&map, mapping, (Vectors::of(&world), window), &normal);
             let [x, y, z] = [window.x, window.y, window.z].map(f64x4::to_array);
@@ -359,10 +363,10 @@ mod tests {
                 for filter in filters {
                     let lookup = Lookup::new(*bias, filter);
                     let Some(block) = lookup.lit_fractions(&map, &world, &normal) else {
-                        assert!(!lookup.reads_together(&map), "{bias}, {filter:?}");
+                        assert!(!lookup.reads_together(), "{bias}, {filter:?}");
                         continue;
                     };
-                    assert!(lookup.reads_together(&map));
+                    assert!(lookup.reads_together());
                     for k in 0..LANES {
                         let one = lookup.lit_fraction(&map, world[k], normal[k]);
                         assert_eq!(
