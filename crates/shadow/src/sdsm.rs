@@ -92,12 +92,14 @@ use glam::{DMat4, DVec3, DVec4};
 use rayon::prelude::*;
 use shadowlab_hull::HullError;
 use shadowlab_params::{DepthRange, ParamError};
+use wide::f64x4;
 
 use crate::error::ShadowError;
 use crate::frame::LightFrame;
 use crate::gather::gather;
 use crate::homogeneous::point_of;
 use crate::input::{LightSource, PlanInput};
+use crate::lanes::{LANES, Vectors};
 use crate::partition::Partition;
 use crate::setup::{LightSetup, ProjectiveMapping, ShadowMapping};
 pub use crate::technique::SdsmVariant;
@@ -365,6 +367,18 @@ fn light_point(to_light: &DMat4, world: DVec3) -> Option<DVec3> {
     (h.w > 0.0).then(|| point_of(h))
 }
 
+/// [`light_point`] of four points in lanes: each lane's point (divided by `w` also where it is
+/// exactly 1, which gives the same bits: `homogeneous` module) and whether it has none.
+fn light_points(to_light: &DMat4, worlds: &[DVec3; LANES]) -> (Vectors, [bool; LANES]) {
+    let [x, y, z, w] = Vectors::of(worlds).transformed(to_light, 1.0);
+    let points = Vectors {
+        x: x / w,
+        y: y / w,
+        z: z / w,
+    };
+    (points, w.to_array().map(|w| w.is_nan() || w <= 0.0))
+}
+
 /// The index of the partition, of those starting at `nears` (non-decreasing), that serves depth
 /// `depth`: the last whose near is at most `depth`, the first if none is — [`crate::served`]'s
 /// rule for z-partitions.
@@ -544,13 +558,21 @@ impl Window {
 /// light, flat axes widened, then moved out where rounding puts a sample outside
 /// ([half-open window](#half-open-window)).
 fn fit(to_light: &DMat4, samples: &[DVec3], reach: f64) -> Result<Window, ShadowError> {
-    let (lo, mut hi) = bounds(samples, |&sample| light_point(to_light, sample))?;
+    let (lo, mut hi) = bounds(
+        samples,
+        |&sample| light_point(to_light, sample),
+        |four| light_points(to_light, four),
+    )?;
     hi.y = hi.y.max(reach);
     let mut window = Window { lo, hi }.unflattened()?;
     for pass in 0..ROUNDING_PASSES {
         let mapping =
             ShadowMapping::Projective(ProjectiveMapping::new(*to_light, window.projection()));
-        let (low, high) = bounds(samples, |&sample| mapping.window(sample))?;
+        let (low, high) = bounds(
+            samples,
+            |&sample| mapping.window(sample),
+            |four| mapping.in_lanes().windows(Vectors::of(four)),
+        )?;
         if !window.widen(low, high, pass) {
             return Ok(window);
         }
@@ -566,19 +588,33 @@ fn fit(to_light: &DMat4, samples: &[DVec3], reach: f64) -> Result<Window, Shadow
 
 /// The component-wise least and greatest of `point(sample)` over `samples`, in parallel over
 /// fixed chunks of [`FIT_CHUNK`] whose bounds are combined in chunk order, so the result is the
-/// same on any thread count; [`ShadowError::LightInsideFocusBody`] where `point` has none.
+/// same on any thread count; [`ShadowError::LightInsideFocusBody`] where `point` has none. The
+/// points are mapped four at a time by `points` (each lane `point`'s bits, `None` where the lane's
+/// flag is set: the `lanes` module), the last few of a chunk by `point`, and taken into the bounds
+/// one by one in the samples' order, as `point`'s alone would be.
 fn bounds(
     samples: &[DVec3],
     point: impl Fn(&DVec3) -> Option<DVec3> + Sync,
+    points: impl Fn(&[DVec3; LANES]) -> (Vectors, [bool; LANES]) + Sync,
 ) -> Result<(DVec3, DVec3), ShadowError> {
     let empty = (DVec3::INFINITY, DVec3::NEG_INFINITY);
+    let take = |(lo, hi): (DVec3, DVec3), p: DVec3| (lo.min(p), hi.max(p));
     let chunks: Vec<Option<(DVec3, DVec3)>> = samples
         .par_chunks(FIT_CHUNK)
         .map(|chunk| {
-            chunk.iter().try_fold(empty, |(lo, hi), sample| {
-                let p = point(sample)?;
-                Some((lo.min(p), hi.max(p)))
-            })
+            let (fours, rest) = chunk.as_chunks::<LANES>();
+            let bounds = fours.iter().try_fold(empty, |bounds, four| {
+                let (p, undefined) = points(four);
+                if undefined.contains(&true) {
+                    return None;
+                }
+                let [x, y, z] = [p.x, p.y, p.z].map(f64x4::to_array);
+                Some((0..LANES).fold(bounds, |bounds, k| {
+                    take(bounds, DVec3::new(x[k], y[k], z[k]))
+                }))
+            })?;
+            rest.iter()
+                .try_fold(bounds, |bounds, sample| Some(take(bounds, point(sample)?)))
         })
         .collect();
     chunks
@@ -588,4 +624,68 @@ fn bounds(
             Some((lo.min(low), hi.max(high)))
         })
         .ok_or(ShadowError::LightInsideFocusBody)
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::{DMat4, DVec3, DVec4};
+    use shadowlab_test_random::SplitMix;
+
+    use super::{FIT_CHUNK, bounds, light_point, light_points};
+    use crate::error::ShadowError;
+
+    /// The bounds of points mapped four at a time are those of the points mapped one by one and
+    /// taken in order, to the bit — through an affine light space (`w` exactly 1) and a
+    /// perspective one (`w` varying), for counts around the lanes and the chunks — and a point
+    /// with no light-space position is the error wherever it lies.
+    #[test]
+    fn bounds_in_lanes_are_the_one_by_one_bounds() {
+        let mut random = SplitMix(0x5eed_0000_0000_5d5e);
+        // A rotation and a translation; and a projection whose `w = 20 − z` is positive for
+        // every sample (coordinates within ±10) and not 1.
+        let affine = DMat4::from_cols(
+            DVec4::new(0.6, 0.8, 0.0, 0.0),
+            DVec4::new(-0.8, 0.6, 0.0, 0.0),
+            DVec4::new(0.0, 0.0, 1.0, 0.0),
+            DVec4::new(1.5, -2.0, 3.0, 1.0),
+        );
+        let perspective = DMat4::from_cols(
+            DVec4::new(1.2, 0.0, 0.0, 0.0),
+            DVec4::new(0.0, 1.2, 0.0, 0.0),
+            DVec4::new(0.0, 0.0, -1.01, -1.0),
+            DVec4::new(0.0, 0.0, -1.0, 20.0),
+        );
+        for to_light in [affine, perspective] {
+            for count in [1, 3, 4, 5, 7, 8, 4095, FIT_CHUNK - 1, FIT_CHUNK + 6] {
+                let samples: Vec<DVec3> = (0..count).map(|_| random.vector(10.0)).collect();
+                let point = |sample: &DVec3| light_point(&to_light, *sample);
+                let expected = samples
+                    .iter()
+                    .map(point)
+                    .try_fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), p| {
+                        let p = p?;
+                        Some((lo.min(p), hi.max(p)))
+                    })
+                    .expect("every sample in front of the centre");
+                let found = bounds(&samples, point, |four| light_points(&to_light, four))
+                    .expect("the same bounds");
+                let bits = |(lo, hi): (DVec3, DVec3)| {
+                    [lo.to_array(), hi.to_array()].map(|v| v.map(f64::to_bits))
+                };
+                assert_eq!(bits(found), bits(expected), "{count} samples");
+                // A point on the projection's centre plane (`w = 0`) has no light-space position.
+                if to_light == perspective {
+                    // First, middle and last: in the first lanes, and among the last few.
+                    for k in [0, count / 2, count - 1] {
+                        let mut samples = samples.clone();
+                        samples[k] = DVec3::new(0.0, 0.0, 20.0);
+                        assert!(matches!(
+                            bounds(&samples, point, |four| light_points(&to_light, four)),
+                            Err(ShadowError::LightInsideFocusBody)
+                        ));
+                    }
+                }
+            }
+        }
+    }
 }
