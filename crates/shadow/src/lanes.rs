@@ -114,3 +114,60 @@ impl Vectors {
         [row(0), row(1), row(2), row(3)]
     }
 }
+
+/// The checks that a mapping in lanes gives each point's own bits (the unit tests of the
+/// logarithmic and paraboloid maps).
+#[cfg(test)]
+pub(crate) mod check {
+    use glam::{DVec2, DVec3};
+    use wide::f64x4;
+
+    use super::{LANES, Vectors};
+
+    /// Asserts that lane `k` of `(ndc, undefined)`, four points' NDC in lanes, is `one(points[k])`
+    /// to the bit, and undefined exactly where that is `None`; returns how many are defined.
+    pub(crate) fn ndc(
+        points: &[DVec3; LANES],
+        (ndc, undefined): (Vectors, [bool; LANES]),
+        one: impl Fn(DVec3) -> Option<DVec3>,
+        round: usize,
+    ) -> usize {
+        let [x, y, z] = [ndc.x, ndc.y, ndc.z].map(f64x4::to_array);
+        let mut defined = 0;
+        for k in 0..LANES {
+            let lanes = (!undefined[k]).then(|| [x[k], y[k], z[k]].map(f64::to_bits));
+            let one = one(points[k]).map(|n| n.to_array().map(f64::to_bits));
+            assert_eq!(lanes, one, "round {round}, lane {k}");
+            defined += usize::from(one.is_some());
+        }
+        defined
+    }
+
+    /// Asserts that lane `k` of `[dx, dy]`, four derivatives in lanes along `direction`, is
+    /// `one(points[k], direction[k])` to the bit wherever that is defined, and that `undefined`
+    /// flags exactly the lanes where it is `None`; returns how many are defined.
+    pub(crate) fn derivatives(
+        (points, direction): (&[DVec3; LANES], &[DVec3; LANES]),
+        ([dx, dy], undefined): ([f64x4; 2], [bool; LANES]),
+        one: impl Fn(DVec3, DVec3) -> Option<DVec2>,
+        round: usize,
+    ) -> usize {
+        let [dx, dy] = [dx, dy].map(f64x4::to_array);
+        let mut defined = 0;
+        for k in 0..LANES {
+            let one = one(points[k], direction[k]);
+            assert_eq!(undefined[k], one.is_none(), "round {round}, lane {k}");
+            if let Some(one) = one {
+                assert_eq!(
+                    (dx[k].to_bits(), dy[k].to_bits()),
+                    (one.x.to_bits(), one.y.to_bits()),
+                    "round {round}, lane {k}: ({}, {}) against {one}",
+                    dx[k],
+                    dy[k]
+                );
+                defined += 1;
+            }
+        }
+        defined
+    }
+}

@@ -320,7 +320,7 @@ mod tests {
     /// among defined ones.
     #[test]
     fn four_points_side_by_side_are_each_point_alone() {
-        use crate::lanes::{LANES, Vectors};
+        use crate::lanes::{LANES, Vectors, check};
         use shadowlab_test_random::SplitMix;
 
         let mut random = SplitMix(0x5eed_0000_0000_1095);
@@ -354,35 +354,22 @@ mod tests {
             let points: [DVec3; LANES] = std::array::from_fn(|_| random.vector(20.0));
             let directions: [[DVec3; LANES]; 3] =
                 std::array::from_fn(|_| std::array::from_fn(|_| random.vector(1.0)));
-            let (ndc, outside) = map.ndc_lanes(Vectors::of(&points));
-            let [x, y, z] = [ndc.x, ndc.y, ndc.z].map(|v| v.to_array());
-            for k in 0..LANES {
-                let lanes = (!outside[k]).then(|| [x[k], y[k], z[k]].map(f64::to_bits));
-                let one = map.ndc(points[k]).map(|n| n.to_array().map(f64::to_bits));
-                assert_eq!(lanes, one, "round {round}, lane {k}");
-                mapped += usize::from(one.is_some());
-            }
+            mapped += check::ndc(
+                &points,
+                map.ndc_lanes(Vectors::of(&points)),
+                |p| map.ndc(p),
+                round,
+            );
             let at = map.at_lanes(Vectors::of(&points));
             for direction in &directions {
-                let [dx, dy] = at
-                    .ndc_derivative(Vectors::of(direction))
-                    .map(|v| v.to_array());
-                for k in 0..LANES {
-                    let one = map.ndc_derivative(points[k], direction[k]);
-                    assert_eq!(at.undefined()[k], one.is_none(), "round {round}, lane {k}");
-                    if let Some(one) = one {
-                        assert_eq!(
-                            (dx[k].to_bits(), dy[k].to_bits()),
-                            (one.x.to_bits(), one.y.to_bits()),
-                            "round {round}, lane {k}: ({}, {}) against {one}",
-                            dx[k],
-                            dy[k]
-                        );
-                        defined += 1;
-                    } else {
-                        undefined += 1;
-                    }
-                }
+                let found = check::derivatives(
+                    (&points, direction),
+                    (at.ndc_derivative(Vectors::of(direction)), at.undefined()),
+                    |p, d| map.ndc_derivative(p, d),
+                    round,
+                );
+                defined += found;
+                undefined += LANES - found;
             }
         }
         assert!(

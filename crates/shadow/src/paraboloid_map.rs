@@ -225,7 +225,7 @@ mod tests {
     use shadowlab_test_random::SplitMix;
 
     use super::ParaboloidMap;
-    use crate::lanes::{LANES, Vectors};
+    use crate::lanes::{LANES, Vectors, check};
 
     /// Four points side by side ([`ParaboloidMap::ndc_lanes`], [`ParaboloidMap::at_lanes`]) give
     /// each point's NDC and derivative to the bit, and are undefined exactly where they are
@@ -245,32 +245,22 @@ mod tests {
                 1 => light - axis * random.range(0.1, 5.0),
                 _ => light + random.vector(10.0),
             });
-            let (ndc, outside) = map.ndc_lanes(Vectors::of(&points));
-            let [x, y, z] = [ndc.x, ndc.y, ndc.z].map(|v| v.to_array());
-            for k in 0..LANES {
-                let lanes = (!outside[k]).then(|| [x[k], y[k], z[k]].map(f64::to_bits));
-                let one = map.ndc(points[k]).map(|n| n.to_array().map(f64::to_bits));
-                assert_eq!(lanes, one, "round {round}, lane {k}");
-                mapped += usize::from(one.is_some());
-                undefined += usize::from(one.is_none());
-            }
+            let found = check::ndc(
+                &points,
+                map.ndc_lanes(Vectors::of(&points)),
+                |p| map.ndc(p),
+                round,
+            );
+            mapped += found;
+            undefined += LANES - found;
             let at = map.at_lanes(Vectors::of(&points));
             let direction: [DVec3; LANES] = std::array::from_fn(|_| random.vector(1.0));
-            let [dx, dy] = at
-                .ndc_derivative(Vectors::of(&direction))
-                .map(|v| v.to_array());
-            for k in 0..LANES {
-                let one = map.ndc_derivative(points[k], direction[k]);
-                assert_eq!(at.undefined()[k], one.is_none(), "round {round}, lane {k}");
-                if let Some(one) = one {
-                    assert_eq!(
-                        (dx[k].to_bits(), dy[k].to_bits()),
-                        (one.x.to_bits(), one.y.to_bits()),
-                        "round {round}, lane {k}"
-                    );
-                    derivatives += 1;
-                }
-            }
+            derivatives += check::derivatives(
+                (&points, &direction),
+                (at.ndc_derivative(Vectors::of(&direction)), at.undefined()),
+                |p, d| map.ndc_derivative(p, d),
+                round,
+            );
         }
         assert!(
             mapped > 5000 && undefined > 1000 && derivatives > 5000,
