@@ -69,7 +69,7 @@ use shadowlab_shadow::homogeneous::quotient;
 use shadowlab_shadow::lanes::LANES;
 use shadowlab_shadow::logarithmic::LogarithmicMap;
 use shadowlab_shadow::paraboloid::ParaboloidMap;
-use shadowlab_shadow::{LaneMapping, LightSetup, ShadowMapping};
+use shadowlab_shadow::{LightSetup, ShadowMapping};
 
 use crate::exact_sum::ExactSum;
 use block::footprint_block;
@@ -119,15 +119,6 @@ impl<'a> Prepared<'a> {
             ShadowMapping::Logarithmic(map) => Self::Logarithmic(map),
             ShadowMapping::Paraboloid(map) => Self::Paraboloid(map),
             ShadowMapping::Projective(mapping) => Self::Projective(mapping.clip_from_world()),
-        }
-    }
-
-    /// The mapping as [`footprint_block`] takes it, four pixels at a time.
-    fn in_lanes(&self) -> LaneMapping<'_> {
-        match self {
-            Self::Projective(m) => LaneMapping::Projective(m),
-            Self::Logarithmic(map) => LaneMapping::Logarithmic(map),
-            Self::Paraboloid(map) => LaneMapping::Paraboloid(map),
         }
     }
 
@@ -367,12 +358,12 @@ pub fn footprints_served(
                 let served: [Option<usize>; LANES] = std::array::from_fn(|k| map_of(first + k));
                 if let Some(index) = served[0]
                     && served.iter().all(|&s| s == Some(index))
-                    && let (mapping, resolution) = &mappings[index]
+                    && let (setup, resolution) = maps[index]
                 {
                     let at = |field: &[DVec3]| std::array::from_fn(|k| field[first + k]);
                     return footprint_block(
-                        mapping.in_lanes(),
-                        *resolution,
+                        setup.mapping.in_lanes(),
+                        resolution,
                         &viewer,
                         &at(&eye.position),
                         &at(&eye.normal),

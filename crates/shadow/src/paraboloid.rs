@@ -27,7 +27,7 @@ use glam::DVec3;
 use crate::error::ShadowError;
 use crate::input::PlanInput;
 use crate::omni::{LightFace, PointLightPlan};
-pub use crate::paraboloid_map::{ParaboloidLanesAt, ParaboloidMap};
+pub use crate::paraboloid_map::{LanesAt, ParaboloidMap};
 use crate::setup::{LightSetup, ShadowMapping};
 use crate::technique::Technique;
 

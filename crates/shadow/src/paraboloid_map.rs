@@ -102,10 +102,10 @@ impl ParaboloidMap {
 
     /// [`Self::ndc_derivative`] at four points at once (`lanes` module): what the derivatives at
     /// a point share — `n`, `r`, `1 + n_z` — for the directions
-    /// [`ParaboloidLanesAt::ndc_derivative`] takes.
+    /// [`LanesAt::ndc_derivative`] takes.
     #[inline(always)]
     #[must_use]
-    pub fn at_lanes(&self, world: Vectors) -> ParaboloidLanesAt<'_> {
+    pub fn at_lanes(&self, world: Vectors) -> LanesAt<'_> {
         let d = world.minus(Vectors::splat(self.light));
         let r = d.length();
         let n = Vectors {
@@ -115,7 +115,7 @@ impl ParaboloidMap {
         };
         let denominator = f64x4::ONE + Vectors::splat(self.axes[2]).dot(n);
         let (r_lanes, denominator_lanes) = (r.to_array(), denominator.to_array());
-        ParaboloidLanesAt {
+        LanesAt {
             map: self,
             n,
             r,
@@ -181,7 +181,7 @@ impl ParaboloidMap {
 /// direction `n` from the light, distance `r` and `1 + n_z`, as
 /// [`ParaboloidMap::ndc_derivative`] computes them.
 #[derive(Clone, Copy, Debug)]
-pub struct ParaboloidLanesAt<'a> {
+pub struct LanesAt<'a> {
     map: &'a ParaboloidMap,
     n: Vectors,
     r: f64x4,
@@ -189,7 +189,7 @@ pub struct ParaboloidLanesAt<'a> {
     undefined: [bool; LANES],
 }
 
-impl ParaboloidLanesAt<'_> {
+impl LanesAt<'_> {
     /// The lanes where [`ParaboloidMap::ndc_derivative`] is `None` (at the light, or at the
     /// opposite pole): their derivatives are meaningless numbers.
     #[must_use]

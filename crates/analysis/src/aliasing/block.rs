@@ -34,7 +34,7 @@ enum LanesAt<'a> {
     /// The logarithmic map at the points.
     Logarithmic(logarithmic::LanesAt<'a>),
     /// A paraboloid hemisphere at the points.
-    Paraboloid(paraboloid::ParaboloidLanesAt<'a>),
+    Paraboloid(paraboloid::LanesAt<'a>),
 }
 
 impl LanesAt<'_> {

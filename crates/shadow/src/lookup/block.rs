@@ -198,8 +198,8 @@ mod tests {
 
     /// Round `round`'s map (near 0.4·I, so that most receivers land on it; every third affine;
     /// every fourth the logarithmic map with that light space, κ from 0 to 100, and every fourth
-    /// a paraboloid hemisphere under the receivers) holding one of `depths`, and four receivers: points on and off the map and behind its centre, normals
-    /// random, zero, NaN and edge-on.
+    /// a paraboloid hemisphere under the receivers) holding one of `depths`, and four receivers:
+    /// points on and off the map and behind its centre, normals random, zero, NaN and edge-on.
     fn case(
         random: &mut SplitMix,
         round: usize,
