@@ -115,6 +115,33 @@ impl Vectors {
     }
 }
 
+/// The points of four homogeneous points `h` (`[x, y, z, w]`, a lane each): `h.xyz / h.w`, lane by
+/// lane, as `homogeneous::point_of` divides one. Where `w` is exactly 1 in every lane — an affine
+/// mapping's points — nothing is divided, as `point_of` skips the division; otherwise every lane
+/// is divided, also one whose `w` is 1: `x / 1 = x`, the same bits either way.
+#[inline(always)]
+#[must_use]
+pub fn point_of(h: [f64x4; 4]) -> Vectors {
+    let [x, y, z, w] = h;
+    Vectors {
+        x: quotient(x, w),
+        y: quotient(y, w),
+        z: quotient(z, w),
+    }
+}
+
+/// `x / w` lane by lane, as `homogeneous::quotient` divides one: nothing is divided where `w` is
+/// exactly 1 in every lane, every lane otherwise (`x / 1 = x`, the same bits either way).
+#[inline(always)]
+#[must_use]
+pub fn quotient(x: f64x4, w: f64x4) -> f64x4 {
+    if w.to_array() == [1.0; LANES] {
+        x
+    } else {
+        x / w
+    }
+}
+
 /// The checks that a mapping in lanes gives each point's own bits (the unit tests of the
 /// logarithmic and paraboloid maps).
 #[cfg(test)]

@@ -245,9 +245,10 @@ pub(crate) fn plan_in(
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use glam::{DMat4, DVec2};
+    use shadowlab_test_random::SplitMix;
 
     /// Relative agreement asked of the closed-form derivative against Richardson-extrapolated
     /// central differences (whose own error is of order 1e-10 at these steps).
@@ -314,43 +315,57 @@ mod tests {
         assert!(compared > 1000, "{compared}");
     }
 
-    /// Four points side by side ([`LogarithmicMap::ndc_lanes`], [`LogarithmicMap::at_lanes`]) give
-    /// each point's NDC and derivative to the bit, and are undefined exactly where they are `None`: spot and directional light spaces, κ = 0
-    /// among the λ, points behind the spot light and on the eye's side of the reference point
-    /// among defined ones.
-    #[test]
-    fn four_points_side_by_side_are_each_point_alone() {
-        use crate::lanes::{LANES, Vectors, check};
-        use shadowlab_test_random::SplitMix;
-
-        let mut random = SplitMix(0x5eed_0000_0000_1095);
+    /// Round `round`'s map for the lane tests: a spot light's projective light space, the identity
+    /// or a random affine one (`w` exactly 1) in turn; κ = 0 among the λ; random depth and extents.
+    pub(crate) fn random_map(random: &mut SplitMix, round: usize) -> LogarithmicMap {
         let spot = glam::dcamera::rh::proj::opengl::perspective(1.0, 1.0, 0.5, 50.0)
             * glam::dcamera::rh::view::look_at_mat4(
                 DVec3::new(1.0, 8.0, 2.0),
                 DVec3::ZERO,
                 DVec3::Z,
             );
+        let lambda = [f64::INFINITY, 1e-3, 0.3, 1.0, 7.0, 1e3][round % 6];
+        let kappa = 1.0 / lambda;
+        let world_to_light = match round % 4 {
+            0 | 2 => spot,
+            1 => DMat4::IDENTITY,
+            _ => {
+                let column = |random: &mut SplitMix, w: f64| random.vector(2.0).extend(w);
+                DMat4::from_cols(
+                    column(random, 0.0),
+                    column(random, 0.0),
+                    column(random, 0.0),
+                    column(random, 1.0),
+                )
+            }
+        };
+        LogarithmicMap {
+            world_to_light,
+            light_to_world: world_to_light.inverse(),
+            z_max: -2.0,
+            depth: 2.0 * random.range(0.1, 10.0),
+            kappa,
+            log_range: kappa.ln_1p(),
+            left: random.range(-2.0, -1.0),
+            right: random.range(1.0, 3.0),
+            y_min: -3.0,
+            y_max: 3.0,
+        }
+    }
+
+    /// Four points side by side ([`LogarithmicMap::ndc_lanes`], [`LogarithmicMap::ndc_depth_lanes`],
+    /// [`LogarithmicMap::at_lanes`]) give each point's NDC, depth and derivative to the bit, and
+    /// are undefined exactly where they are `None`: spot and directional light spaces, κ = 0
+    /// among the λ, points behind the spot light and on the eye's side of the reference point
+    /// among defined ones.
+    #[test]
+    fn four_points_side_by_side_are_each_point_alone() {
+        use crate::lanes::{LANES, Vectors, check};
+
+        let mut random = SplitMix(0x5eed_0000_0000_1095);
         let (mut defined, mut undefined, mut mapped) = (0, 0, 0);
         for round in 0..3000_usize {
-            let lambda = [f64::INFINITY, 1e-3, 0.3, 1.0, 7.0, 1e3][round % 6];
-            let kappa = 1.0 / lambda;
-            let world_to_light = if round % 2 == 0 {
-                spot
-            } else {
-                DMat4::IDENTITY
-            };
-            let map = LogarithmicMap {
-                world_to_light,
-                light_to_world: world_to_light.inverse(),
-                z_max: -2.0,
-                depth: 2.0 * random.range(0.1, 10.0),
-                kappa,
-                log_range: kappa.ln_1p(),
-                left: random.range(-2.0, -1.0),
-                right: random.range(1.0, 3.0),
-                y_min: -3.0,
-                y_max: 3.0,
-            };
+            let map = random_map(&mut random, round);
             let points: [DVec3; LANES] = std::array::from_fn(|_| random.vector(20.0));
             let directions: [[DVec3; LANES]; 3] =
                 std::array::from_fn(|_| std::array::from_fn(|_| random.vector(1.0)));
@@ -358,6 +373,19 @@ mod tests {
                 &points,
                 map.ndc_lanes(Vectors::of(&points)),
                 |p| map.ndc(p),
+                round,
+            );
+            // The depth alone, in every coordinate.
+            let (depth, depth_undefined) = map.ndc_depth_lanes(Vectors::of(&points));
+            let depths = Vectors {
+                x: depth,
+                y: depth,
+                z: depth,
+            };
+            check::ndc(
+                &points,
+                (depths, depth_undefined),
+                |p| map.ndc_depth(p).map(DVec3::splat),
                 round,
             );
             let at = map.at_lanes(Vectors::of(&points));
@@ -377,5 +405,38 @@ mod tests {
             "{defined} {undefined}"
         );
         assert!(mapped > 3_000, "{mapped}");
+    }
+
+    /// A row's texel rays four at a time ([`TexelRow::rays`]) are each texel's [`TexelRow::ray`]
+    /// to the bit — origin its first point, direction `to − from` — under spot, identity and
+    /// random affine light spaces, in rows of 1 to 11 texels (whole blocks of four and the rest).
+    #[test]
+    fn a_rows_rays_four_at_a_time_are_each_texels_ray() {
+        use shadowlab_trace::Ray;
+
+        let mut random = SplitMix(0x5eed_0000_0000_7e15);
+        let unset = Ray {
+            origin: DVec3::NAN,
+            direction: DVec3::NAN,
+        };
+        for round in 0..2000_usize {
+            let map = random_map(&mut random, round);
+            let row = map.texel_row(random.range(-1.0, 1.0));
+            let xs: Vec<f64> = (0..1 + round % 11)
+                .map(|_| random.range(-1.0, 1.0))
+                .collect();
+            let mut rays = vec![unset; xs.len()];
+            row.rays(&xs, &mut rays);
+            for (k, (ray, &x)) in rays.iter().zip(&xs).enumerate() {
+                let (from, to) = row.ray(x);
+                let bits = |v: DVec3| v.to_array().map(f64::to_bits);
+                assert_eq!(bits(ray.origin), bits(from), "round {round}, texel {k}");
+                assert_eq!(
+                    bits(ray.direction),
+                    bits(to - from),
+                    "round {round}, texel {k}"
+                );
+            }
+        }
     }
 }

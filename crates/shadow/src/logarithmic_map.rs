@@ -5,8 +5,10 @@
 use glam::{DMat4, DVec2, DVec3};
 use wide::f64x4;
 
+use shadowlab_trace::Ray;
+
 use crate::homogeneous::{divided, point_of};
-use crate::lanes::{LANES, Vectors};
+use crate::lanes::{self, LANES, Vectors};
 
 /// The exact logarithmic mapping of one shadow map.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -100,16 +102,11 @@ impl LogarithmicMap {
     }
 
     /// Each lane's `h = M·(p, 1)`, `q = h/h_w`, `τ` and `w = 1 + κτ` of four points, as
-    /// [`Self::light_point`] computes them one point at a time (`point_of` divided in every lane,
-    /// also where `h_w = 1`, which it skips: `x / 1 = x`).
+    /// [`Self::light_point`] computes them one point at a time ([`lanes::point_of`]).
     #[inline(always)]
     fn light_lanes(&self, world: Vectors) -> ([f64x4; 4], Vectors, f64x4, f64x4) {
         let h = world.transformed(&self.world_to_light, 1.0);
-        let q = Vectors {
-            x: h[0] / h[3],
-            y: h[1] / h[3],
-            z: h[2] / h[3],
-        };
+        let q = lanes::point_of(h);
         let tau = (f64x4::splat(self.z_max) - q.z) / f64x4::splat(self.depth);
         let w = f64x4::ONE + f64x4::splat(self.kappa) * tau;
         (h, q, tau, w)
@@ -137,6 +134,20 @@ impl LogarithmicMap {
         let (h_w, w) = (h[3].to_array(), w.to_array());
         let undefined = std::array::from_fn(|k| h_w[k] <= 0.0 || w[k].is_nan() || w[k] <= 0.0);
         (Vectors { x, y, z }, undefined)
+    }
+
+    /// [`Self::ndc_depth`] of four points (`lanes` module): each lane the one-point operations in
+    /// order, without the warp's logarithm; and the lanes where it is `None` (their depths are
+    /// meaningless numbers). A unit test holds the two together.
+    #[inline(always)]
+    #[must_use]
+    pub fn ndc_depth_lanes(&self, world: Vectors) -> (f64x4, [bool; LANES]) {
+        let (h, q, _, w) = self.light_lanes(world);
+        let depth = (f64x4::splat(self.y_max + self.y_min) - f64x4::splat(2.0) * q.y)
+            / f64x4::splat(self.y_max - self.y_min);
+        let (h_w, w) = (h[3].to_array(), w.to_array());
+        let undefined = std::array::from_fn(|k| h_w[k] <= 0.0 || w[k].is_nan() || w[k] <= 0.0);
+        (depth, undefined)
     }
 
     /// [`Self::ndc_derivative`] at four points at once (`lanes` module): what the derivatives at
@@ -252,10 +263,10 @@ impl LanesAt<'_> {
         let map = self.map;
         let dh = direction.transformed(&map.world_to_light, 0.0);
         let (h, q, w) = (&self.h, self.q, self.w);
-        // `divided(ḣ·h_w − h·ḣ_w, h_w²)`, divided in every lane (`x / 1 = x`).
+        // `divided(ḣ·h_w − h·ḣ_w, h_w²)`.
         let h_w2 = h[3] * h[3];
-        let dq_x = (dh[0] * h[3] - h[0] * dh[3]) / h_w2;
-        let dq_z = (dh[2] * h[3] - h[2] * dh[3]) / h_w2;
+        let dq_x = lanes::quotient(dh[0] * h[3] - h[0] * dh[3], h_w2);
+        let dq_z = lanes::quotient(dh[2] * h[3] - h[2] * dh[3], h_w2);
         let dtau = -dq_z / f64x4::splat(map.depth);
         let dw = f64x4::splat(map.kappa) * dtau;
         let two = f64x4::splat(2.0);
@@ -285,5 +296,66 @@ impl TexelRow<'_> {
             point_of(map.light_to_world * DVec3::new(lateral, light_y, self.z).extend(1.0))
         };
         (to_world(map.y_max), to_world(map.y_min))
+    }
+
+    /// [`Self::ray`] of the texel at each NDC `xs[k]`, into `rays[k]` as the ray from its first
+    /// point to its second (`Ray { origin: from, direction: to − from }`): four texels at a time
+    /// (`lanes` module), each lane the one-texel operations in order, so the same bits (a unit test
+    /// holds the two together). What the row's texels share is found once: the lateral scale, and
+    /// the products of the light-space `y`, `z` and `w = 1` with their columns of the
+    /// light-to-world matrix (each coordinate of glam's `DMat4 · DVec4` is
+    /// `((x_axis·x + y_axis·y) + z_axis·z) + w_axis·w`, and a product rounds the same wherever it
+    /// is then summed). The points are divided as [`lanes::point_of`] divides.
+    ///
+    /// # Panics
+    /// If `xs` and `rays` differ in length.
+    pub fn rays(&self, xs: &[f64], rays: &mut [Ray]) {
+        assert_eq!(xs.len(), rays.len(), "one ray per texel");
+        let map = self.map;
+        let m = &map.light_to_world;
+        let (scale, width) = (0.5 * self.w, map.right - map.left);
+        // Per coordinate: the z and w terms (`w_axis · 1` is `w_axis`), and the y term at each end.
+        let z_terms: [f64; 4] = std::array::from_fn(|i| m.z_axis[i] * self.z);
+        let ends = [map.y_max, map.y_min].map(|light_y| {
+            let y_terms: [f64; 4] = std::array::from_fn(|i| m.y_axis[i] * light_y);
+            move |lateral: f64x4| {
+                lanes::point_of(std::array::from_fn(|i| {
+                    ((f64x4::splat(m.x_axis[i]) * lateral + f64x4::splat(y_terms[i]))
+                        + f64x4::splat(z_terms[i]))
+                        + f64x4::splat(m.w_axis[i])
+                }))
+            }
+        });
+        let mut blocks = rays.chunks_exact_mut(LANES);
+        for (rays, xs) in (&mut blocks).zip(xs.chunks_exact(LANES)) {
+            let x = f64x4::new(std::array::from_fn(|k| xs[k]));
+            let lateral = f64x4::splat(scale)
+                * ((x * f64x4::splat(width) + f64x4::splat(map.left)) + f64x4::splat(map.right));
+            let (from, to) = (ends[0](lateral), ends[1](lateral));
+            let direction = to.minus(from);
+            let [ox, oy, oz, dx, dy, dz] = [
+                from.x,
+                from.y,
+                from.z,
+                direction.x,
+                direction.y,
+                direction.z,
+            ]
+            .map(f64x4::to_array);
+            for (k, ray) in rays.iter_mut().enumerate() {
+                *ray = Ray {
+                    origin: DVec3::new(ox[k], oy[k], oz[k]),
+                    direction: DVec3::new(dx[k], dy[k], dz[k]),
+                };
+            }
+        }
+        let done = xs.len() - blocks.into_remainder().len();
+        for (ray, &x) in rays[done..].iter_mut().zip(&xs[done..]) {
+            let (from, to) = self.ray(x);
+            *ray = Ray {
+                origin: from,
+                direction: to - from,
+            };
+        }
     }
 }

@@ -5,9 +5,12 @@ use rayon::prelude::*;
 use shadowlab_raster::{
     DepthFormat, DepthPairTarget, DepthTarget, RasterError, RasterOptions, Rasterizer, Triangles,
 };
-use shadowlab_trace::{Bvh, RAY_CHUNK, Ray};
+use shadowlab_trace::{Bvh, Hit, RAY_CHUNK, Ray};
+use wide::f64x4;
 
 use crate::error::ShadowError;
+use crate::lanes::{LANES, Vectors};
+use crate::logarithmic_map::LogarithmicMap;
 use crate::setup::{LightSetup, ShadowMapping};
 
 /// Along a texel's ray (t from 0 to 1 across B's light-axis extent), hits closer than this to the
@@ -119,8 +122,7 @@ impl ShadowMap {
                 ShadowMapping::Paraboloid(map) => Some(map.ndc_depth(point)),
                 ShadowMapping::Projective(_) => None,
             };
-            let depth = ndc.map_or(1.0, |z| 0.5 * (z + 1.0));
-            options.format.decode(options.format.encode(depth))
+            stored(options.format, ndc)
         };
         // Row j's depths into `nearest` and, if asked for, `second`.
         let fill_row = |j: usize,
@@ -192,18 +194,9 @@ impl ShadowMap {
         let mut nearest = zeros(side * side);
         // The logarithmic map's first hits, as a grid of rays: swept, where they are parallel.
         if let (ShadowMapping::Logarithmic(map), false) = (mapping, options.second_depth) {
-            let row = |j: usize, rays: &mut [Ray]| {
-                let row = map.texel_row(centre(j));
-                for (i, ray) in rays.iter_mut().enumerate() {
-                    let (from, to) = row.ray(centre(i));
-                    *ray = Ray {
-                        origin: from,
-                        direction: to - from,
-                    };
-                }
-            };
-            bvh.closest_hits_grid(side, row, 0.0, 1.0, &mut nearest, |ray, hit| {
-                hit.map_or(1.0, |hit| store(ray, hit.t))
+            let row = |j: usize, rays: &mut [Ray]| map.texel_row(centre(j)).rays(&centres, rays);
+            bvh.closest_hits_grid(side, row, 0.0, 1.0, &mut nearest, |rays, hits, out| {
+                logarithmic_depths(map, options.format, (rays, hits), out);
             })?;
             return Ok(Self {
                 setup: setup.clone(),
@@ -305,5 +298,109 @@ impl ShadowMap {
 
     fn index(&self, i: u32, j: u32) -> usize {
         j as usize * self.resolution as usize + i as usize
+    }
+}
+
+/// What a cast map stores of a hit point at NDC depth `ndc`: its window depth `(z + 1)/2` in
+/// `format` (decoded back), 1 where the point has none.
+fn stored(format: DepthFormat, ndc: Option<f64>) -> f64 {
+    let depth = ndc.map_or(1.0, |z| 0.5 * (z + 1.0));
+    format.decode(format.encode(depth))
+}
+
+/// The logarithmic map's stored depths of a work item's texel rays from their first hits, into
+/// `out`: 1 where a ray meets nothing, else [`stored`] of [`LogarithmicMap::ndc_depth`] of the
+/// hit point `ray.at(t)` — four rays at a time ([`LogarithmicMap::ndc_depth_lanes`]; the hit
+/// point `origin + direction·t` lane by lane, as `Ray::at`), the same bits as one by one.
+fn logarithmic_depths(
+    map: &LogarithmicMap,
+    format: DepthFormat,
+    (rays, hits): (&[Ray], &[Option<Hit>]),
+    out: &mut [f64],
+) {
+    let count = out.len();
+    let mut blocks = out.chunks_exact_mut(LANES);
+    for ((out, rays), hits) in (&mut blocks)
+        .zip(rays.chunks_exact(LANES))
+        .zip(hits.chunks_exact(LANES))
+    {
+        let t = f64x4::new(std::array::from_fn(|k| hits[k].map_or(0.0, |hit| hit.t)));
+        let origin = Vectors::of(&std::array::from_fn(|k| rays[k].origin));
+        let direction = Vectors::of(&std::array::from_fn(|k| rays[k].direction));
+        let (ndc, undefined) = map.ndc_depth_lanes(origin.plus(direction.times(t)));
+        let ndc = ndc.to_array();
+        for (k, out) in out.iter_mut().enumerate() {
+            *out = hits[k].map_or(1.0, |_| stored(format, (!undefined[k]).then_some(ndc[k])));
+        }
+    }
+    let done = count - blocks.into_remainder().len();
+    for ((out, ray), hit) in out[done..].iter_mut().zip(&rays[done..]).zip(&hits[done..]) {
+        *out = hit.map_or(1.0, |hit| stored(format, map.ndc_depth(ray.at(hit.t))));
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::DVec3;
+    use shadowlab_raster::DepthFormat;
+    use shadowlab_test_random::SplitMix;
+    use shadowlab_trace::{Hit, Ray};
+
+    use super::{logarithmic_depths, stored};
+    use crate::logarithmic::tests::random_map;
+
+    /// A work item's depths four rays at a time ([`logarithmic_depths`]) are each ray's alone to
+    /// the bit — `stored` of the map's NDC depth at `ray.at(t)`, 1 for a miss — over spot and
+    /// affine light spaces, hit points behind the light or short of the reference point among
+    /// them, misses among hits, three formats, and work items of 0 to 11 rays.
+    #[test]
+    fn logarithmic_depths_four_at_a_time_are_each_rays_alone() {
+        let mut random = SplitMix(0x5eed_0000_0000_de97);
+        let formats = [
+            DepthFormat::F32,
+            DepthFormat::Unorm16,
+            DepthFormat::ReversedF32,
+        ];
+        let (mut misses, mut without_depth, mut stored_depths) = (0, 0, 0);
+        for round in 0..2000_usize {
+            let map = random_map(&mut random, round);
+            let format = formats[round % formats.len()];
+            let count = round % 12;
+            let rays: Vec<Ray> = (0..count)
+                .map(|_| Ray {
+                    origin: random.vector(20.0),
+                    direction: random.vector(1.0),
+                })
+                .collect();
+            let hits: Vec<Option<Hit>> = (0..count)
+                .map(|k| {
+                    (k % 3 != 1).then(|| Hit {
+                        t: random.range(0.0, 1.0),
+                        triangle: 0,
+                        u: 0.0,
+                        v: 0.0,
+                    })
+                })
+                .collect();
+            let mut out = vec![f64::NAN; count];
+            logarithmic_depths(&map, format, (&rays, &hits), &mut out);
+            for (k, (ray, hit)) in rays.iter().zip(&hits).enumerate() {
+                let one = hit.map_or(1.0, |hit| {
+                    let ndc = map.ndc_depth(ray.at(hit.t));
+                    if ndc.is_some() {
+                        stored_depths += 1;
+                    } else {
+                        without_depth += 1;
+                    }
+                    stored(format, ndc)
+                });
+                misses += usize::from(hit.is_none());
+                assert_eq!(out[k].to_bits(), one.to_bits(), "round {round}, ray {k}");
+            }
+        }
+        assert!(
+            misses > 1000 && without_depth > 500 && stored_depths > 3000,
+            "{misses} {without_depth} {stored_depths}"
+        );
     }
 }

@@ -5,7 +5,7 @@ use glam::{DMat4, DVec3};
 use wide::f64x4;
 
 use crate::homogeneous::point_of;
-use crate::lanes::{LANES, Vectors};
+use crate::lanes::{self, LANES, Vectors};
 use crate::logarithmic_map::LogarithmicMap;
 use crate::paraboloid_map::ParaboloidMap;
 use crate::technique::Technique;
@@ -38,21 +38,16 @@ pub enum LaneMapping<'a> {
 
 impl LaneMapping<'_> {
     /// [`ShadowMapping::window`] of four points, and the lanes where it is `None` (their
-    /// coordinates are meaningless numbers). A projective map's clip coordinates are divided in
-    /// every lane, also where `w = 1`, which `point_of` skips (`x / 1 = x`).
+    /// coordinates are meaningless numbers). A projective map's clip coordinates are divided as
+    /// [`lanes::point_of`] divides them.
     #[inline(always)]
     #[must_use]
     pub fn windows(self, points: Vectors) -> (Vectors, [bool; LANES]) {
         let (ndc, undefined) = match self {
             Self::Projective(m) => {
-                let [x, y, z, w] = points.transformed(m, 1.0);
-                let behind = w.to_array().map(|w| w <= 0.0);
-                let ndc = Vectors {
-                    x: x / w,
-                    y: y / w,
-                    z: z / w,
-                };
-                (ndc, behind)
+                let clip = points.transformed(m, 1.0);
+                let behind = clip[3].to_array().map(|w| w <= 0.0);
+                (lanes::point_of(clip), behind)
             }
             Self::Logarithmic(map) => map.ndc_lanes(points),
             Self::Paraboloid(map) => map.ndc_lanes(points),

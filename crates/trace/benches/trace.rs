@@ -248,7 +248,7 @@ fn queries(c: &mut Criterion) {
                                     0.0,
                                     f64::INFINITY,
                                     &mut out,
-                                    |_, hit| hit,
+                                    |_, hits, out| out.copy_from_slice(hits),
                                 )
                                 .expect("valid rays");
                                 out

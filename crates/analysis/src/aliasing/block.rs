@@ -21,7 +21,7 @@
 
 use glam::{DMat4, DVec3};
 use shadowlab_shadow::LaneMapping;
-use shadowlab_shadow::lanes::{LANES, Vectors};
+use shadowlab_shadow::lanes::{self, LANES, Vectors};
 use shadowlab_shadow::{logarithmic, paraboloid};
 use wide::f64x4;
 
@@ -63,10 +63,9 @@ impl LanesAt<'_> {
     }
 
     /// `At::derivative` in texels: the window coordinates' derivative along `direction`, times
-    /// `texels`. A projective map's is divided in every lane, also where `w = 1`, which the
-    /// one-pixel function skips (`quotient`): `x / 1 = x`, and one vector division serves four
-    /// lanes. The logarithmic and paraboloid maps' NDC derivatives are halved into window units, as
-    /// there.
+    /// `texels`, a projective map's divided as `lanes::quotient` divides (as the one-pixel
+    /// function's `quotient`). The logarithmic and paraboloid maps' NDC derivatives are halved into
+    /// window units, as there.
     #[inline(always)]
     fn derivative(&self, direction: Vectors, texels: f64x4) -> [f64x4; 2] {
         let half = f64x4::splat(0.5);
@@ -74,7 +73,9 @@ impl LanesAt<'_> {
             Self::Projective { m, clip } => {
                 let dp = direction.transformed(m, 0.0);
                 let w = clip[3];
-                let d = |i: usize| half * (dp[i] * w - clip[i] * dp[3]) / (w * w) * texels;
+                let d = |i: usize| {
+                    lanes::quotient(half * (dp[i] * w - clip[i] * dp[3]), w * w) * texels
+                };
                 [d(0), d(1)]
             }
             Self::Logarithmic(at) => at.ndc_derivative(direction).map(|d| d * half * texels),

@@ -10,9 +10,9 @@
 //! and the four chains' latencies overlap.
 //!
 //! Each lane performs exactly the operations of the one-pixel functions — `ShadowMapping::window`
-//! (`LaneMapping::windows`: glam's `DMat4 · DVec4` sums its columns from `x` to `w`; a `w` of
-//! exactly 1 is divided by, which gives the dividend's bits, where the one-pixel function skips
-//! the division; the logarithmic warp's `ln_1p` is the C library's, lane by lane) and
+//! (`LaneMapping::windows`: glam's `DMat4 · DVec4` sums its columns from `x` to `w`; clip
+//! coordinates divided as `lanes::point_of` divides, which gives the one-pixel function's bits;
+//! the logarithmic warp's `ln_1p` is the C library's, lane by lane) and
 //! `bias::depth_gradient` (glam's `DVec3::any_orthonormal_pair`, `DMat2::inverse`,
 //! `DMat2 · DVec2`, term by term) — in the same order, and neither Rust nor `wide` contracts a
 //! product and a sum into a fused multiply-add: every lane's decision is the one-pixel lookup's,

@@ -306,8 +306,9 @@ struct Rows {
 
 impl Bvh {
     /// [`Bvh::closest_hits`] for a grid of parallel rays, `row_len` rays per row, row `j` written
-    /// by `row(j, rays)` (its rays, validated here, in order along the row); the answer of ray
-    /// `(i, j)` passed to `answer` with its ray and written to `out[j·row_len + i]`. Every answer
+    /// by `row(j, rays)` (its rays, validated here, in order along the row); the answers of a work
+    /// item's rays passed to `answer(rays, hits, out)` with the rays, in grid order, to be written
+    /// to `out` (ray `(i, j)`'s to `out[j·row_len + i]`; `out` as long as `rays`). Every answer
     /// is [`Bvh::closest_hit`]'s, bit for bit, whatever the rays (the `grid` module); it comes
     /// faster where the rays are parallel, each row's origins lie along it in order and the rays
     /// far outnumber the triangles — a directional light's shadow-map texels over a scene of a
@@ -328,7 +329,7 @@ impl Bvh {
         t_min: f64,
         t_max: f64,
         out: &mut [T],
-        answer: impl Fn(&Ray, Option<Hit>) -> T + Sync,
+        answer: impl Fn(&[Ray], &[Option<Hit>], &mut [T]) + Sync,
     ) -> Result<(), TraceError> {
         check_range(t_min, t_max);
         assert!(
@@ -371,9 +372,7 @@ impl Bvh {
                     }
                     None => self.closest_item(&rows.prepared, t_min, t_max, &mut rows.hits),
                 }
-                for ((out, ray), hit) in out.iter_mut().zip(&rows.rays).zip(&rows.hits) {
-                    *out = answer(ray, *hit);
-                }
+                answer(&rows.rays, &rows.hits, out);
                 Ok(())
             })
     }

@@ -21,7 +21,7 @@ fn swept(bvh: &Bvh, row_len: usize, rays: &[Ray], t_min: f64, t_max: f64) -> Vec
         t_min,
         t_max,
         &mut out,
-        |_, hit| hit,
+        |_, hits, out| out.copy_from_slice(hits),
     )
     .expect("valid rays");
     out
