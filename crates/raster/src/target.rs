@@ -59,8 +59,7 @@ impl DepthTarget {
     /// Window depths in `[0, 1]` exactly as stored, row-major with row 0 at the bottom.
     #[must_use]
     pub fn depths(&self) -> Vec<f64> {
-        let format = self.format;
-        self.keys.image(self.size, |k| format.decode(k))
+        self.keys.depths(self.size, self.format)
     }
 }
 
@@ -139,15 +138,13 @@ impl DepthPairTarget {
     /// Nearest depths, row-major with row 0 at the bottom.
     #[must_use]
     pub fn nearest(&self) -> Vec<f64> {
-        let format = self.format;
-        self.nearest.image(self.size, |k| format.decode(k))
+        self.nearest.depths(self.size, self.format)
     }
 
     /// Second-nearest depths (1 where fewer than two surfaces cover the pixel).
     #[must_use]
     pub fn second(&self) -> Vec<f64> {
-        let format = self.format;
-        self.second.image(self.size, |k| format.decode(k))
+        self.second.depths(self.size, self.format)
     }
 }
 
@@ -212,8 +209,7 @@ impl EyeTarget {
     /// Window depths as stored, row-major with row 0 at the bottom.
     #[must_use]
     pub fn depths(&self) -> Vec<f64> {
-        let format = self.format;
-        self.keys.image(self.size, |k| format.decode(k))
+        self.keys.depths(self.size, self.format)
     }
 
     /// The visible triangle of each pixel ([`NO_TRIANGLE`] where none), row-major, row 0 at the

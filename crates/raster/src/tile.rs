@@ -7,6 +7,7 @@ use std::borrow::Cow;
 
 use rayon::prelude::*;
 
+use crate::depth::DepthFormat;
 use crate::error::RasterError;
 use crate::fixed::MAX_TARGET_SIZE;
 
@@ -200,6 +201,18 @@ impl TiledPlane {
         value: impl Fn(u32) -> U + Sync,
     ) -> Vec<U> {
         size.untile(&self.values, &self.cleared, self.clear_value, value)
+    }
+
+    /// The window depths of the keys of `format` each pixel holds, as a row-major image (row 0 at
+    /// the bottom): [`Self::image`] of [`DepthFormat::decode`], with the format's decoding chosen
+    /// once rather than per pixel.
+    pub(crate) fn depths(&self, size: TargetSize, format: DepthFormat) -> Vec<f64> {
+        match format {
+            DepthFormat::F32 => self.image(size, |k| DepthFormat::F32.decode(k)),
+            DepthFormat::ReversedF32 => self.image(size, |k| DepthFormat::ReversedF32.decode(k)),
+            DepthFormat::Unorm24 => self.image(size, |k| DepthFormat::Unorm24.decode(k)),
+            DepthFormat::Unorm16 => self.image(size, |k| DepthFormat::Unorm16.decode(k)),
+        }
     }
 
     /// The groups of [`TILE_GROUP`] tiles a draw writes in parallel, in storage order.
