@@ -1,6 +1,7 @@
 //! Rays, hits, and the per-ray set-up that every box and triangle test of one query shares.
 
 use glam::DVec3;
+use wide::f64x4;
 
 use crate::error::TraceError;
 
@@ -162,16 +163,20 @@ impl PreparedRay {
             2
         };
         let (kx, ky) = ((kz + 1) % 3, (kz + 2) % 3);
-        let shear = [d[kx] / d[kz], d[ky] / d[kz], 1.0 / d[kz]];
+        // The six divisions as two vector divisions, lane by lane the same quotients.
+        let [shear_x, shear_y, shear_z, _] =
+            (f64x4::new([d[kx], d[ky], 1.0, 1.0]) / f64x4::splat(d[kz])).to_array();
+        let shear = [shear_x, shear_y, shear_z];
+        let [inverse_x, inverse_y, inverse_z, _] =
+            (f64x4::ONE / f64x4::new([d[0], d[1], d[2], 1.0])).to_array();
+        let inverse = [inverse_x, inverse_y, inverse_z];
         // The padding: multiplying by a power of two is exact.
         let reach = magnitude + ray.origin.abs().max_element();
         let padding = reach * (BOX_PADDING_ULPS * f64::EPSILON);
-        let mut inverse = [0.0; 3];
         let mut negative = [false; 3];
         let mut near_origin = [0.0; 3];
         let mut far_origin = [0.0; 3];
         for axis in 0..3 {
-            inverse[axis] = 1.0 / d[axis];
             negative[axis] = d[axis].is_sign_negative();
             let up = (o[axis] + padding).next_up();
             let down = (o[axis] - padding).next_down();
