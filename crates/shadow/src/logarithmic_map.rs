@@ -3,9 +3,8 @@
 //! plans it.
 
 use glam::{DMat4, DVec2, DVec3};
-use wide::f64x4;
-
 use shadowlab_trace::Ray;
+use wide::f64x4;
 
 use crate::homogeneous::{divided, point_of};
 use crate::lanes::{self, LANES, Vectors};
