@@ -341,7 +341,6 @@ fn logarithmic_depths(
 
 #[cfg(test)]
 mod tests {
-    use glam::DVec3;
     use shadowlab_raster::DepthFormat;
     use shadowlab_test_random::SplitMix;
     use shadowlab_trace::{Hit, Ray};
