@@ -128,10 +128,7 @@ impl LogarithmicMap {
             tau
         };
         let y = two * warped - f64x4::ONE;
-        let z = (f64x4::splat(self.y_max + self.y_min) - two * q.y)
-            / f64x4::splat(self.y_max - self.y_min);
-        let (h_w, w) = (h[3].to_array(), w.to_array());
-        let undefined = std::array::from_fn(|k| h_w[k] <= 0.0 || w[k].is_nan() || w[k] <= 0.0);
+        let (z, undefined) = self.depth_lanes(&h, q, w);
         (Vectors { x, y, z }, undefined)
     }
 
@@ -142,6 +139,13 @@ impl LogarithmicMap {
     #[must_use]
     pub fn ndc_depth_lanes(&self, world: Vectors) -> (f64x4, [bool; LANES]) {
         let (h, q, _, w) = self.light_lanes(world);
+        self.depth_lanes(&h, q, w)
+    }
+
+    /// [`Self::depth_of`] of each lane's light-space `q`, and the lanes [`Self::light_point`]
+    /// leaves undefined (`h_w ≤ 0`, or `w = 1 + κτ` not positive), from [`Self::light_lanes`].
+    #[inline(always)]
+    fn depth_lanes(&self, h: &[f64x4; 4], q: Vectors, w: f64x4) -> (f64x4, [bool; LANES]) {
         let depth = (f64x4::splat(self.y_max + self.y_min) - f64x4::splat(2.0) * q.y)
             / f64x4::splat(self.y_max - self.y_min);
         let (h_w, w) = (h[3].to_array(), w.to_array());
