@@ -8,7 +8,7 @@ use shadowlab_analysis::report::{filter_label, technique_label};
 use shadowlab_analysis::setup_file::{SetupError, setup_for};
 use shadowlab_analysis::study::Setting;
 use shadowlab_analysis::truth::Truth;
-use shadowlab_analysis::{AnalysisError, aliasing::Footprint};
+use shadowlab_analysis::{AnalysisError, aliasing::FrameFootprints};
 use shadowlab_raster::EyeImage;
 use shadowlab_scene::{Scene, export_glb, export_obj};
 use shadowlab_shadow::{FrameOptions, LightShadow};
@@ -149,7 +149,7 @@ impl Exporter {
         combination: &str,
         (eye, truth): (&EyeImage, &Truth),
         (lights, lit): (&[LightShadow], &[Vec<f64>]),
-        footprints: &[Option<Footprint>],
+        footprints: &FrameFootprints,
     ) -> Result<(), CliError> {
         let files =
             shadow_files(combination, truth, eye, lights, lit, footprints).map_err(failure)?;

@@ -14,7 +14,7 @@
 //! a grid, the eye pass's lookups). And the measurement's own phases for that combination, which every
 //! combination of a study pays once: the per-pixel texel footprints (`study::frame_footprints`; also through the
 //! logarithmic map at 2000², whose derivative is its own closed form), and their statistics
-//! (`aliasing::stats_of_each` of the total, perspective and projection parts, as `study::outcome`
+//! (`FrameFootprints::stats` of the total, perspective and projection parts, as `study::outcome`
 //! takes them).
 //!
 //! Figures are recorded with the machine and date in docs/benchmarks.md.
@@ -25,7 +25,6 @@ use std::time::Duration;
 use criterion::measurement::WallTime;
 use criterion::{BenchmarkGroup, Criterion, criterion_group, criterion_main};
 use glam::DVec3;
-use shadowlab_analysis::aliasing::stats_of_each;
 use shadowlab_analysis::study::{self, EyePass, Setting, StudyOptions};
 use shadowlab_analysis::truth::{exact_truth, scene_bvh};
 use shadowlab_raster::DepthFormat;
@@ -119,17 +118,9 @@ fn footprint_phases(
     group.bench_function("outdoor/footprints", |b| {
         b.iter(|| study::frame_footprints(scene, &eye.image, black_box(&shadows)));
     });
-    let per_pixel = study::frame_footprints(scene, &eye.image, &shadows);
+    let footprints = study::frame_footprints(scene, &eye.image, &shadows);
     group.bench_function("outdoor/footprint-stats", |b| {
-        b.iter(|| {
-            stats_of_each(black_box(&per_pixel), |p| {
-                [
-                    p.map(|f| f.total),
-                    p.map(|f| f.perspective),
-                    p.map(|f| f.projection),
-                ]
-            })
-        });
+        b.iter(|| black_box(&footprints).stats());
     });
 }
 

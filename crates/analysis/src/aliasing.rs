@@ -65,6 +65,7 @@ use glam::{DMat2, DMat4, DVec2, DVec3, DVec4};
 use rayon::prelude::*;
 use shadowlab_raster::{EyeImage, NO_TRIANGLE};
 use shadowlab_scene::Camera;
+use shadowlab_shadow::gather::gather_map;
 use shadowlab_shadow::homogeneous::quotient;
 use shadowlab_shadow::lanes::LANES;
 use shadowlab_shadow::logarithmic::LogarithmicMap;
@@ -302,44 +303,44 @@ fn footprint_of(local: &Local) -> Option<Footprint> {
     })
 }
 
-/// [`footprint`] at every pixel of `eye` (the eye pass of `camera`, which gives the pixel size)
-/// with its position and interpolated normal; `None` where nothing is visible or the footprint is
-/// undefined. Row-major, row 0 at the bottom; parallel, and the same on any thread count.
+/// [`footprint`] at every visible pixel of `eye` (the eye pass of `camera`, which gives the pixel
+/// size) with its position and interpolated normal; parallel, and the same on any thread count.
 #[must_use]
 pub fn footprints(
     setup: &LightSetup,
     resolution: u32,
     eye: &EyeImage,
     camera: &Camera,
-) -> Vec<Option<Footprint>> {
+) -> FrameFootprints {
     footprints_served(&[(setup, resolution)], eye, camera, |_| Some(0))
 }
 
 /// [`footprints`] through one of several maps per pixel — `maps[k]` being a setup and its map
 /// side, `serving(pixel)` the index of the map that serves pixel `pixel` (`None`: no footprint):
 /// each pixel's footprint is computed once, through its own map, as a partitioned shadow looks it
-/// up. Four neighbouring pixels served by one map are measured side by side (the `block` module:
-/// the same bits as one by one).
+/// up. Four visible pixels in a row of the visible pixels, served by one map, are measured side by
+/// side (the `block` module: the same bits as one by one).
+///
+/// # Panics
+/// If `eye` holds `2³²` pixels or more (a side is at most `MAX_IMAGE_SIDE`, 16384).
 #[must_use]
 pub fn footprints_served(
     maps: &[(&LightSetup, u32)],
     eye: &EyeImage,
     camera: &Camera,
     serving: impl Fn(usize) -> Option<usize> + Sync,
-) -> Vec<Option<Footprint>> {
+) -> FrameFootprints {
     let mappings: Vec<(Prepared<'_>, u32)> = maps
         .iter()
         .map(|&(setup, resolution)| (Prepared::new(&setup.mapping), resolution))
         .collect();
     let viewer = Viewer::new(camera);
-    let pixels = eye.triangle.len();
-    // The index of the map serving a pixel, if it is visible.
-    let map_of = |pixel: usize| {
-        if eye.triangle[pixel] == NO_TRIANGLE {
-            return None;
-        }
-        serving(pixel).filter(|&index| index < mappings.len())
-    };
+    let visible: Vec<u32> = gather_map(&eye.triangle, 0, |pixel, &triangle| {
+        (triangle != NO_TRIANGLE)
+            .then(|| u32::try_from(pixel).expect("an eye image holds fewer than 2³² pixels"))
+    });
+    // The index of the map serving a visible pixel.
+    let map_of = |pixel: usize| serving(pixel).filter(|&index| index < mappings.len());
     let one = |pixel: usize| {
         let (mapping, resolution) = &mappings[map_of(pixel)?];
         footprint_of(&local(
@@ -350,38 +351,101 @@ pub fn footprints_served(
             eye.normal[pixel],
         )?)
     };
-    let blocks: Vec<[Option<Footprint>; LANES]> = (0..pixels.div_ceil(LANES))
-        .into_par_iter()
-        .map(|block| {
-            let first = block * LANES;
-            if first + LANES <= pixels {
-                let served: [Option<usize>; LANES] = std::array::from_fn(|k| map_of(first + k));
-                if let Some(index) = served[0]
-                    && served.iter().all(|&s| s == Some(index))
-                    && let (setup, resolution) = maps[index]
-                {
-                    let at = |field: &[DVec3]| std::array::from_fn(|k| field[first + k]);
-                    return footprint_block(
-                        setup.mapping.in_lanes(),
-                        resolution,
-                        &viewer,
-                        &at(&eye.position),
-                        &at(&eye.normal),
-                    );
-                }
+    let block = |pixels: &[u32]| -> [Option<Footprint>; LANES] {
+        let Ok(four) = <[u32; LANES]>::try_from(pixels) else {
+            return std::array::from_fn(|k| pixels.get(k).and_then(|&p| one(p as usize)));
+        };
+        let four = four.map(|p| p as usize);
+        let served = four.map(map_of);
+        match served[0] {
+            Some(index) if served.iter().all(|&s| s == Some(index)) => {
+                let (setup, resolution) = maps[index];
+                footprint_block(
+                    setup.mapping.in_lanes(),
+                    resolution,
+                    &viewer,
+                    &four.map(|p| eye.position[p]),
+                    &four.map(|p| eye.normal[p]),
+                )
             }
-            std::array::from_fn(|k| {
-                if first + k < pixels {
-                    one(first + k)
-                } else {
-                    None
-                }
+            _ => four.map(one),
+        }
+    };
+    // Written once, by the workers: an indexed collect fills its vector in place.
+    let blocks: Vec<[[f64; 3]; LANES]> = visible
+        .par_chunks(LANES)
+        .map(|pixels| {
+            block(pixels).map(|footprint| {
+                footprint.map_or([f64::NAN; 3], |f| [f.total, f.perspective, f.projection])
             })
         })
         .collect();
-    let mut footprints = blocks.into_flattened();
-    footprints.truncate(pixels);
-    footprints
+    let mut parts = blocks.into_flattened();
+    parts.truncate(visible.len());
+    FrameFootprints {
+        pixels: eye.triangle.len(),
+        visible,
+        parts,
+    }
+}
+
+/// The texel footprints of an eye image's pixels, held for its visible pixels alone — the total,
+/// perspective and projection parts, all NaN where a visible pixel has no footprint (a
+/// [`Footprint`]'s parts are never NaN) — in pixel order: 28 bytes a visible pixel with its
+/// index, where one `Option<Footprint>` for every pixel takes 32 a pixel. A study writes and reads
+/// one of these per combination, so its size is time (docs/benchmarks.md).
+#[derive(Clone, Debug)]
+pub struct FrameFootprints {
+    /// The pixels of the image.
+    pixels: usize,
+    /// The visible pixels, ascending.
+    visible: Vec<u32>,
+    /// Per visible pixel, [`Footprint::total`], [`Footprint::perspective`] and
+    /// [`Footprint::projection`]; NaN where it has none.
+    parts: Vec<[f64; 3]>,
+}
+
+impl FrameFootprints {
+    /// No footprint at any of `pixels` pixels.
+    #[must_use]
+    pub fn none(pixels: usize) -> Self {
+        Self {
+            pixels,
+            visible: Vec::new(),
+            parts: Vec::new(),
+        }
+    }
+
+    /// Each pixel's footprint, in the image's order (row-major, row 0 at the bottom): `None` where
+    /// nothing is visible or the footprint is undefined.
+    pub fn each_pixel(&self) -> impl Iterator<Item = Option<Footprint>> + '_ {
+        let mut visible = self.visible.iter().enumerate().peekable();
+        (0..self.pixels).map(move |pixel| {
+            let (k, _) = visible.next_if(|&(_, &p)| p as usize == pixel)?;
+            let [total, perspective, projection] = self.parts[k];
+            (!total.is_nan()).then_some(Footprint {
+                total,
+                perspective,
+                projection,
+            })
+        })
+    }
+
+    /// How many pixels have a footprint.
+    #[must_use]
+    pub fn defined(&self) -> usize {
+        self.parts
+            .iter()
+            .filter(|[total, ..]| !total.is_nan())
+            .count()
+    }
+
+    /// The statistics of the total, perspective and projection parts, in that order ([`stats`]),
+    /// from one read of the footprints.
+    #[must_use]
+    pub fn stats(&self) -> [AliasingStats; 3] {
+        stats_of_each(&self.parts, |parts| parts.map(Some))
+    }
 }
 
 /// Summary of a set of aliasing values.

@@ -26,7 +26,7 @@ use shadowlab_shadow::{
     eye_image, shadows_of,
 };
 
-use crate::aliasing::Footprint;
+use crate::aliasing::FrameFootprints;
 use crate::setup_file::{
     DEPTH_IMAGE_SLACK_BYTES, DepthImage, ImageKind, Setup, SetupError, SetupPartition, read_bounded,
 };
@@ -80,7 +80,7 @@ pub struct EvaluatedFrame<'a> {
     /// The frame's maps and lookups.
     pub shadows: &'a Shadows,
     /// The texel footprint per pixel (first light).
-    pub footprints: &'a [Option<Footprint>],
+    pub footprints: &'a FrameFootprints,
 }
 
 /// [`evaluate`], handing each frame's study to `observe` with the frame's per-pixel results (e.g.

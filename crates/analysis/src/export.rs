@@ -29,7 +29,7 @@ use shadowlab_raster::image_out::{ExrLayer, NpyElement, array_npy, layers_exr};
 use shadowlab_raster::{EyeImage, NO_TRIANGLE};
 use shadowlab_shadow::LightShadow;
 
-use crate::aliasing::Footprint;
+use crate::aliasing::{Footprint, FrameFootprints};
 use crate::error::AnalysisError;
 use crate::truth::LIT_THRESHOLD;
 use crate::truth::Truth;
@@ -257,7 +257,7 @@ pub fn shadow_files(
     eye: &EyeImage,
     lights: &[LightShadow],
     lit: &[Vec<f64>],
-    footprints: &[Option<Footprint>],
+    footprints: &FrameFootprints,
 ) -> Result<Vec<ExportFile>, AnalysisError> {
     let size = (eye.width, eye.height);
     let mut files = Vec::new();
@@ -322,7 +322,11 @@ pub fn shadow_files(
         )?);
     }
     let part = |f: fn(&Footprint) -> f64| {
-        to_f32(footprints.iter().map(|p| p.as_ref().map_or(f64::NAN, f)))
+        to_f32(
+            footprints
+                .each_pixel()
+                .map(|p| p.as_ref().map_or(f64::NAN, f)),
+        )
     };
     let [total, perspective, projection] = [
         part(|f| f.total),

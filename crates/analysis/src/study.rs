@@ -13,7 +13,7 @@ use shadowlab_shadow::{
 };
 use shadowlab_trace::Bvh;
 
-use crate::aliasing::{AliasingStats, Footprint, footprints_served, stats_of_each};
+use crate::aliasing::{AliasingStats, FrameFootprints, footprints_served};
 use crate::attribution::{Attribution, Causes, attribute, cause_image};
 use crate::classify::{Misclassification, difference_image, disagreement, misclassification};
 use crate::error::AnalysisError;
@@ -114,17 +114,20 @@ pub struct Pictures {
 
 impl Pictures {
     /// The pictures of `setting`'s `shadows` of `scene`, seen in `eye` and judged by `truth`,
-    /// with the footprints `per_pixel` and the errors' causes `attribution`.
+    /// with the footprints `footprints` and the errors' causes `attribution`.
     #[must_use]
     pub fn of(
         setting: &Setting,
         scene: &Scene,
         (eye, truth): (&EyeImage, &Truth),
         shadows: &Shadows,
-        per_pixel: &[Option<Footprint>],
+        footprints: &FrameFootprints,
         attribution: &Attribution,
     ) -> Self {
-        let totals: Vec<Option<f64>> = per_pixel.iter().map(|f| f.map(|f| f.total)).collect();
+        let totals: Vec<Option<f64>> = footprints
+            .each_pixel()
+            .map(|f| f.map(|f| f.total))
+            .collect();
         Self {
             setting: setting.clone(),
             eye: shade_eye(eye, &shadows.lights, &shadows.lit, scene),
@@ -333,23 +336,15 @@ impl EyePass {
 
 /// The texel footprint of every pixel, through the map (partition) that serves it; first light.
 #[must_use]
-pub fn frame_footprints(
-    scene: &Scene,
-    eye: &EyeImage,
-    shadows: &Shadows,
-) -> Vec<Option<Footprint>> {
+pub fn frame_footprints(scene: &Scene, eye: &EyeImage, shadows: &Shadows) -> FrameFootprints {
     footprints_of(scene, eye, &shadows.lights)
 }
 
 /// [`frame_footprints`] of the lights' maps (of a [`Shadows`] or a `shadowlab_shadow::Frame`).
 #[must_use]
-pub fn footprints_of(
-    scene: &Scene,
-    eye: &EyeImage,
-    lights: &[LightShadow],
-) -> Vec<Option<Footprint>> {
+pub fn footprints_of(scene: &Scene, eye: &EyeImage, lights: &[LightShadow]) -> FrameFootprints {
     let Some(shadow) = lights.first() else {
-        return vec![None; eye.triangle.len()];
+        return FrameFootprints::none(eye.triangle.len());
     };
     let view = scene_eye(scene);
     let maps: Vec<_> = shadow
@@ -394,10 +389,10 @@ pub(crate) fn footprinted(
     scene: &Scene,
     eye: &EyeImage,
     shadows: &Shadows,
-) -> (Vec<Option<Footprint>>, Duration) {
+) -> (FrameFootprints, Duration) {
     let start = Instant::now();
-    let per_pixel = frame_footprints(scene, eye, shadows);
-    (per_pixel, start.elapsed())
+    let footprints = frame_footprints(scene, eye, shadows);
+    (footprints, start.elapsed())
 }
 
 /// A filterable map's errors against the nearest lookup of the same maps ([`filter_leaks`]), if
@@ -452,25 +447,18 @@ pub(crate) fn attributed(
     Ok((attribution, start.elapsed()))
 }
 
-/// The outcome of shadows whose per-pixel footprints are `per_pixel` and whose errors are
+/// The outcome of shadows whose per-pixel footprints are `footprints` and whose errors are
 /// attributed as `attribution`, each measured in the time given; the footprints' statistics are
 /// timed here and added to theirs.
 pub(crate) fn outcome(
     truth: &Truth,
     shadows: &Shadows,
-    (per_pixel, footprint_time): &(Vec<Option<Footprint>>, Duration),
+    (footprints, footprint_time): &(FrameFootprints, Duration),
     (attribution, attribution_time): &(Attribution, Duration),
     leaks: Option<FilterLeaks>,
 ) -> Outcome {
     let start = Instant::now();
-    // The three parts summarised from one read of the footprints.
-    let footprint = stats_of_each(per_pixel, |p| {
-        [
-            p.map(|f| f.total),
-            p.map(|f| f.perspective),
-            p.map(|f| f.projection),
-        ]
-    });
+    let footprint = footprints.stats();
     let footprints = *footprint_time + start.elapsed();
     Outcome {
         errors: misclassification(truth, &shadows.lit),
@@ -547,7 +535,7 @@ pub struct FirstRun<'a> {
     /// Its maps and lookups.
     pub shadows: &'a Shadows,
     /// The texel footprint per pixel (first light).
-    pub footprints: &'a [Option<Footprint>],
+    pub footprints: &'a FrameFootprints,
     /// Its errors' causes per pixel.
     pub attribution: &'a Attribution,
 }
@@ -636,7 +624,7 @@ pub struct Observed<'a> {
     /// The combination's maps and lookups (its first timing run).
     pub shadows: &'a Shadows,
     /// The texel footprint per pixel (first light).
-    pub footprints: &'a [Option<Footprint>],
+    pub footprints: &'a FrameFootprints,
 }
 
 /// [`run`], showing each defined combination's per-pixel results to `observe` (e.g. to write

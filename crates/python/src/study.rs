@@ -325,7 +325,7 @@ pub(crate) fn analyze<'py>(
                     if pixels {
                         let footprints = observed
                             .footprints
-                            .iter()
+                            .each_pixel()
                             .map(|f| f.map_or(f64::NAN, |f| f.total))
                             .collect();
                         kept.push((

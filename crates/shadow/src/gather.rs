@@ -17,16 +17,29 @@ pub(crate) fn gather<T: Copy + Send + Sync>(
     items: &[T],
     keep: impl Fn(usize, &T) -> bool + Sync,
 ) -> Vec<T> {
-    let counts: Vec<usize> = items
-        .par_chunks(GATHER_CHUNK)
-        .enumerate()
-        .map(|(chunk, part)| kept(chunk, part, &keep).count())
-        .collect();
     let Some(&first) = items.first() else {
         return Vec::new();
     };
+    gather_map(items, first, |index, item| {
+        keep(index, item).then_some(*item)
+    })
+}
+
+/// The values `pick(index, item)` gives for the items of `items` it picks (`Some`), in their
+/// order: [`gather`] of something made of each kept item, e.g. its index. `fill` only holds the
+/// places before they are written.
+pub fn gather_map<T: Sync, U: Copy + Send + Sync>(
+    items: &[T],
+    fill: U,
+    pick: impl Fn(usize, &T) -> Option<U> + Sync,
+) -> Vec<U> {
+    let counts: Vec<usize> = items
+        .par_chunks(GATHER_CHUNK)
+        .enumerate()
+        .map(|(chunk, part)| picked(chunk, part, &pick).count())
+        .collect();
     // Filled by the workers (docs/CONVENTIONS.md, "Large buffers"), then overwritten.
-    let mut out: Vec<T> = rayon::iter::repeat_n(first, counts.iter().sum()).collect();
+    let mut out: Vec<U> = rayon::iter::repeat_n(fill, counts.iter().sum()).collect();
     let mut places = Vec::with_capacity(counts.len());
     let mut rest = out.as_mut_slice();
     for &count in &counts {
@@ -39,29 +52,29 @@ pub(crate) fn gather<T: Copy + Send + Sync>(
         .enumerate()
         .zip(places)
         .for_each(|((chunk, part), place)| {
-            for (slot, item) in place.iter_mut().zip(kept(chunk, part, &keep)) {
-                *slot = item;
+            for (slot, value) in place.iter_mut().zip(picked(chunk, part, &pick)) {
+                *slot = value;
             }
         });
     out
 }
 
-/// The items of chunk number `chunk`, `part`, that `keep` accepts (by index in the whole slice).
-fn kept<'a, T: Copy>(
+/// What `pick` makes of the items of chunk number `chunk`, `part`, that it picks (by index in
+/// the whole slice).
+fn picked<'a, T, U>(
     chunk: usize,
     part: &'a [T],
-    keep: &'a impl Fn(usize, &T) -> bool,
-) -> impl Iterator<Item = T> + 'a {
+    pick: &'a impl Fn(usize, &T) -> Option<U>,
+) -> impl Iterator<Item = U> + 'a {
     let start = chunk * GATHER_CHUNK;
     part.iter()
         .enumerate()
-        .filter(move |&(i, item)| keep(start + i, item))
-        .map(|(_, item)| *item)
+        .filter_map(move |(i, item)| pick(start + i, item))
 }
 
 #[cfg(test)]
 mod tests {
-    use super::{GATHER_CHUNK, gather};
+    use super::{GATHER_CHUNK, gather, gather_map};
 
     /// A filter by index and value.
     type Keep<'a> = &'a (dyn Fn(usize, &u64) -> bool + Sync);
@@ -86,6 +99,9 @@ mod tests {
                     .map(|(_, v)| *v)
                     .collect();
                 assert_eq!(gather(&items, keep), expected, "{len} items");
+                let indices: Vec<usize> = (0..len).filter(|&i| keep(i, &items[i])).collect();
+                let picked = gather_map(&items, 0, |i, v| keep(i, v).then_some(i));
+                assert_eq!(picked, indices, "{len} items' indices");
             }
         }
     }

@@ -40,7 +40,7 @@ mod error;
 pub mod faces;
 mod focus;
 mod frame;
-mod gather;
+pub mod gather;
 pub mod homogeneous;
 mod input;
 pub mod lanes;

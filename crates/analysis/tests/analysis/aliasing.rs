@@ -154,7 +154,9 @@ fn footprints_of_a_rendered_plane_match_an_independent_construction() {
     );
     let scene = scene(camera.clone(), vec![sun(to_light)], &[plane]);
     let (eye, _) = eye_pass(&scene).unwrap();
-    let all = footprints(&setup, resolution, &eye, &camera);
+    let all: Vec<_> = footprints(&setup, resolution, &eye, &camera)
+        .each_pixel()
+        .collect();
     let mut compared = 0;
     for (p, f) in all.iter().enumerate() {
         let Some(f) = f else {
@@ -497,7 +499,12 @@ fn footprints_are_the_same_on_any_thread_count() {
         .count();
     for technique in [Technique::Lispsm(WarpChoice::PAPER), Technique::LOGARITHMIC] {
         let setup = &setup_of(&scene, technique);
-        let run = |threads| on_threads(threads, || footprints(setup, 1024, &eye, &scene.camera));
+        let run = |threads| {
+            on_threads(threads, || {
+                let all = footprints(setup, 1024, &eye, &scene.camera);
+                all.each_pixel().collect::<Vec<_>>()
+            })
+        };
         let one = run(1);
         assert_eq!(one, run(2));
         assert_eq!(one, run(3));
@@ -527,7 +534,9 @@ fn footprints_are_each_pixels_footprint_to_the_bit() {
     ] {
         let (eye, _) = eye_pass(scene).unwrap();
         let setup = setup_of(scene, technique);
-        let all = footprints(&setup, 1000, &eye, &scene.camera);
+        let frame = footprints(&setup, 1000, &eye, &scene.camera);
+        let all: Vec<_> = frame.each_pixel().collect();
+        assert_eq!(all.len(), eye.triangle.len(), "{technique}: one per pixel");
         let mut defined = 0;
         for (p, measured) in all.iter().enumerate() {
             let alone = (eye.triangle[p] != shadowlab_raster::NO_TRIANGLE)
@@ -540,5 +549,14 @@ fn footprints_are_each_pixels_footprint_to_the_bit() {
             defined += usize::from(alone.is_some());
         }
         assert!(defined > 10_000, "{technique}: {defined}");
+        assert_eq!(frame.defined(), defined, "{technique}");
+        // The statistics of the three parts, as `stats` of each part of the defined footprints.
+        let parts: [fn(&Footprint) -> f64; 3] = [|f| f.total, |f| f.perspective, |f| f.projection];
+        for (summary, part) in frame.stats().iter().zip(parts) {
+            let alone = stats(all.iter().flatten().map(part));
+            let bits = |s: &AliasingStats| [s.max, s.p99, s.mean].map(f64::to_bits);
+            assert_eq!(bits(summary), bits(&alone), "{technique}");
+            assert_eq!(summary.count, alone.count, "{technique}");
+        }
     }
 }
