@@ -134,6 +134,188 @@ pub(crate) struct PreparedRay {
     pub(crate) far_origin: [f64; 3],
 }
 
+/// Rays set up as [`PreparedRay`] sets each up, held field by field (a structure of arrays), so
+/// that the fields of any four consecutive rays load as vectors: a grid's rows, tested four rays
+/// at a time against one triangle (`triangle::intersect_rays`). Set up four at a time
+/// ([`PreparedRays::extend`]), each lane the one-ray operations, so the same bits.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct PreparedRays {
+    /// [`PreparedRay::origin`], per axis.
+    pub(crate) origin: [Vec<f64>; 3],
+    /// [`PreparedRay::kz`].
+    pub(crate) kz: Vec<u8>,
+    /// [`PreparedRay::shear`], per component.
+    pub(crate) shear: [Vec<f64>; 3],
+    /// [`PreparedRay::inverse`], per axis; its sign is [`PreparedRay::negative`]'s (`1/d` keeps
+    /// `d`'s sign, zeros included).
+    inverse: [Vec<f64>; 3],
+    /// [`PreparedRay::near_origin`], per axis.
+    near_origin: [Vec<f64>; 3],
+    /// [`PreparedRay::far_origin`], per axis.
+    far_origin: [Vec<f64>; 3],
+}
+
+impl PreparedRays {
+    /// `rays` (validated, [`Ray::validate`]) set up against a mesh of magnitude `magnitude`, in
+    /// place of the rays held: four at a time in `f64x4` lanes, the last few one by one.
+    pub(crate) fn set_up(&mut self, rays: &[Ray], magnitude: f64) {
+        let fields = self
+            .origin
+            .iter_mut()
+            .chain(&mut self.shear)
+            .chain(&mut self.inverse)
+            .chain(&mut self.near_origin)
+            .chain(&mut self.far_origin);
+        for field in fields {
+            field.clear();
+            field.resize(rays.len(), 0.0);
+        }
+        self.kz.clear();
+        self.kz.resize(rays.len(), 0);
+        let mut fours = rays.chunks_exact(4);
+        for (k, four) in (&mut fours).enumerate() {
+            self.set_four(4 * k, four, magnitude);
+        }
+        let done = rays.len() - fours.remainder().len();
+        for (k, ray) in fours.remainder().iter().enumerate() {
+            self.set(done + k, &PreparedRay::set_up(ray, magnitude));
+        }
+    }
+
+    /// Rays `first..first + 4`, `rays`, set up side by side: [`PreparedRay::set_up`] lane by lane —
+    /// the dominant axis chosen per lane, the same IEEE quotients, sums and products, and the next
+    /// doubles up and down taken on the bits as `f64::next_up` and `f64::next_down` take them.
+    #[inline(always)]
+    fn set_four(&mut self, first: usize, rays: &[Ray], magnitude: f64) {
+        let lanes = |f: fn(&Ray) -> f64| f64x4::new(std::array::from_fn(|k| f(&rays[k])));
+        let o = [
+            lanes(|r| r.origin.x),
+            lanes(|r| r.origin.y),
+            lanes(|r| r.origin.z),
+        ];
+        let d = [
+            lanes(|r| r.direction.x),
+            lanes(|r| r.direction.y),
+            lanes(|r| r.direction.z),
+        ];
+        let [ax, ay, az] = d.map(|d| d.abs().to_array());
+        let [dx, dy, dz] = d.map(f64x4::to_array);
+        // Per lane, `d[kz]`, `d[kx]`, `d[ky]` for `PreparedRay::set_up`'s dominant axis `kz`.
+        let mut kz = [0_u8; 4];
+        let mut picked = [[0.0; 4]; 3];
+        for k in 0..4 {
+            let x_first = ax[k] >= ay[k] && ax[k] >= az[k];
+            let y_over_z = ay[k] >= az[k];
+            kz[k] = if x_first {
+                0
+            } else if y_over_z {
+                1
+            } else {
+                2
+            };
+            let (z, x, y) = if x_first {
+                (dx[k], dy[k], dz[k])
+            } else if y_over_z {
+                (dy[k], dz[k], dx[k])
+            } else {
+                (dz[k], dx[k], dy[k])
+            };
+            (picked[0][k], picked[1][k], picked[2][k]) = (z, x, y);
+        }
+        let [along_z, along_x, along_y] = picked.map(f64x4::new);
+        let shear = [along_x / along_z, along_y / along_z, f64x4::ONE / along_z];
+        let inverse = d.map(|d| f64x4::ONE / d);
+        let reach = f64x4::splat(magnitude) + o[0].abs().max(o[1].abs().max(o[2].abs()));
+        let padding = reach * f64x4::splat(BOX_PADDING_ULPS * f64::EPSILON);
+        let range = first..first + 4;
+        for axis in 0..3 {
+            let up = next_up(o[axis] + padding);
+            let down = next_down(o[axis] - padding);
+            // Entry plane lo − e (direction ≥ 0) or hi + e (direction < 0); exit plane the other.
+            let negative = [dx, dy, dz][axis].map(f64::is_sign_negative);
+            let near: [f64; 4] = std::array::from_fn(|k| if negative[k] { down[k] } else { up[k] });
+            let far: [f64; 4] = std::array::from_fn(|k| if negative[k] { up[k] } else { down[k] });
+            self.origin[axis][range.clone()].copy_from_slice(&o[axis].to_array());
+            self.shear[axis][range.clone()].copy_from_slice(&shear[axis].to_array());
+            self.inverse[axis][range.clone()].copy_from_slice(&inverse[axis].to_array());
+            self.near_origin[axis][range.clone()].copy_from_slice(&near);
+            self.far_origin[axis][range.clone()].copy_from_slice(&far);
+        }
+        self.kz[range].copy_from_slice(&kz);
+    }
+
+    /// Ray `k` set to `prepared`.
+    fn set(&mut self, k: usize, prepared: &PreparedRay) {
+        for axis in 0..3 {
+            self.origin[axis][k] = prepared.origin[axis];
+            self.shear[axis][k] = prepared.shear[axis];
+            self.inverse[axis][k] = prepared.inverse[axis];
+            self.near_origin[axis][k] = prepared.near_origin[axis];
+            self.far_origin[axis][k] = prepared.far_origin[axis];
+        }
+        self.kz[k] = u8::try_from(prepared.kz).expect("an axis is 0, 1 or 2");
+    }
+
+    /// Ray `k`, as [`PreparedRay::set_up`] gives it.
+    #[inline(always)]
+    pub(crate) fn ray(&self, k: usize) -> PreparedRay {
+        let at = |field: &[Vec<f64>; 3]| field.each_ref().map(|values| values[k]);
+        let inverse = at(&self.inverse);
+        PreparedRay {
+            origin: at(&self.origin),
+            kz: usize::from(self.kz[k]),
+            shear: at(&self.shear),
+            inverse,
+            negative: inverse.map(f64::is_sign_negative),
+            near_origin: at(&self.near_origin),
+            far_origin: at(&self.far_origin),
+        }
+    }
+
+    /// Field `values` of the four rays from `first`.
+    #[inline(always)]
+    pub(crate) fn lanes(values: &[f64], first: usize) -> f64x4 {
+        let four: [f64; 4] = values[first..first + 4].try_into().expect("four values");
+        f64x4::new(four)
+    }
+}
+
+/// `f64::next_up` of each lane of finite `x`: the bits one step up (toward +∞), the least
+/// positive subnormal from either zero.
+#[inline(always)]
+fn next_up(x: f64x4) -> [f64; 4] {
+    x.to_array().map(|x| {
+        let bits = x.to_bits();
+        // One step away from zero for a negative x, toward it for a positive one.
+        let step = (bits >> 63).wrapping_mul(2).wrapping_sub(1);
+        let next = if bits & !SIGN_BIT == 0 {
+            1
+        } else {
+            bits.wrapping_sub(step)
+        };
+        f64::from_bits(next)
+    })
+}
+
+/// `f64::next_down` of each lane of finite `x`: the bits one step down (toward −∞), the least
+/// negative subnormal from either zero.
+#[inline(always)]
+fn next_down(x: f64x4) -> [f64; 4] {
+    x.to_array().map(|x| {
+        let bits = x.to_bits();
+        let step = (bits >> 63).wrapping_mul(2).wrapping_sub(1);
+        let next = if bits & !SIGN_BIT == 0 {
+            SIGN_BIT | 1
+        } else {
+            bits.wrapping_add(step)
+        };
+        f64::from_bits(next)
+    })
+}
+
+/// The sign bit of an f64.
+const SIGN_BIT: u64 = 1 << 63;
+
 impl PreparedRay {
     /// Sets `ray` up against a mesh whose largest absolute vertex coordinate is `magnitude`.
     ///
@@ -227,5 +409,59 @@ impl PreparedRay {
             }
         }
         (near, far)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::DVec3;
+    use shadowlab_test_random::SplitMix;
+
+    use super::{PreparedRay, PreparedRays, Ray};
+
+    /// A coordinate that is often a special case: either zero, a tie with another axis, or random.
+    fn coordinate(random: &mut SplitMix, tie: f64) -> f64 {
+        match random.next_u64() % 8 {
+            0 => 0.0,
+            1 => -0.0,
+            2 => tie,
+            3 => -tie,
+            4 => f64::from_bits(1) * random.range(-3.0, 3.0).round(),
+            _ => random.range(-50.0, 50.0),
+        }
+    }
+
+    /// Claim: rays set up four at a time (`PreparedRays::set_up`) hold, ray by ray, every field of
+    /// `PreparedRay::set_up` to the bit — over origins and directions with zeros of either sign,
+    /// tied components (the dominant axis's first-on-ties rule), subnormals, and counts that leave
+    /// one to three rays for the one-by-one path.
+    #[test]
+    fn rays_set_up_four_at_a_time_are_each_rays_set_up() {
+        let mut random = SplitMix(0x5eed_0000_0000_5e70);
+        for count in [1, 4, 7, 64, 1023] {
+            let rays: Vec<Ray> = (0..count)
+                .map(|_| {
+                    loop {
+                        let tie = random.range(-2.0, 2.0);
+                        let mut axes = || coordinate(&mut random, tie);
+                        let origin = DVec3::new(axes(), axes(), axes());
+                        let direction = DVec3::new(axes(), axes(), axes());
+                        if let Ok(ray) = Ray::new(origin, direction) {
+                            break ray;
+                        }
+                    }
+                })
+                .collect();
+            let mut held = PreparedRays::default();
+            held.set_up(&rays, 8.0);
+            for (k, ray) in rays.iter().enumerate() {
+                let (four, one) = (held.ray(k), PreparedRay::set_up(ray, 8.0));
+                let bits = |p: &PreparedRay| {
+                    let fields = [p.origin, p.shear, p.inverse, p.near_origin, p.far_origin];
+                    (p.kz, p.negative, fields.map(|f| f.map(f64::to_bits)))
+                };
+                assert_eq!(bits(&four), bits(&one), "ray {k} of {count}: {ray:?}");
+            }
+        }
     }
 }

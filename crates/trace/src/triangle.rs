@@ -45,7 +45,7 @@
 
 use wide::f64x4;
 
-use crate::ray::PreparedRay;
+use crate::ray::{PreparedRay, PreparedRays};
 
 /// A stored triangle: `p0.x, p0.y, p0.z, p1.x, …, p2.z`.
 pub(crate) type TriangleVertices = [f64; 9];
@@ -233,27 +233,28 @@ fn cross_lanes(ax: f64x4, ay: f64x4, bx: f64x4, by: f64x4) -> f64x4 {
     }))
 }
 
-/// [`intersect`] of four rays sharing their dominant axis `KZ` against one triangle, the rays in
-/// lanes: each lane performs [`watertight`]'s operations in its order (the sheared vertices, the
-/// three edge functions with their exact signs, the determinant, `t`, `u` and `v`: the divisions
-/// of four rays in one instruction each), then [`intersect`]'s clamp for the lanes that hit — the
-/// same `(t, u, v)` as [`intersect`] for each ray, bit for bit.
+/// [`intersect`] of the four rays of `rays` from `first`, which share their dominant axis `KZ`,
+/// against one triangle, the rays in lanes: each lane performs [`watertight`]'s operations in its
+/// order (the sheared vertices, the three edge functions with their exact signs, the determinant,
+/// `t`, `u` and `v`: the divisions of four rays in one instruction each), then [`intersect`]'s
+/// clamp for the lanes that hit — the same `(t, u, v)` as [`intersect`] for each ray, bit for bit.
 #[inline(always)]
 pub(crate) fn intersect_rays<const KZ: usize>(
-    rays: [&PreparedRay; RAYS],
+    rays: &PreparedRays,
+    first: usize,
     triangle: &TriangleVertices,
 ) -> [Option<(f64, f64, f64)>; RAYS] {
     let (kx, ky) = ((KZ + 1) % 3, (KZ + 2) % 3);
-    let lanes = |f: fn(&PreparedRay) -> f64| f64x4::new(rays.map(f));
+    let lanes = |values: &[f64]| PreparedRays::lanes(values, first);
     let (ox, oy, oz) = (
-        lanes(|r| r.origin[(KZ + 1) % 3]),
-        lanes(|r| r.origin[(KZ + 2) % 3]),
-        lanes(|r| r.origin[KZ]),
+        lanes(&rays.origin[kx]),
+        lanes(&rays.origin[ky]),
+        lanes(&rays.origin[KZ]),
     );
     let (sx, sy, sz) = (
-        lanes(|r| r.shear[0]),
-        lanes(|r| r.shear[1]),
-        lanes(|r| r.shear[2]),
+        lanes(&rays.shear[0]),
+        lanes(&rays.shear[1]),
+        lanes(&rays.shear[2]),
     );
     let sheared = |i: usize| {
         let x = f64x4::splat(triangle[3 * i + kx]) - ox;
@@ -277,7 +278,7 @@ pub(crate) fn intersect_rays<const KZ: usize>(
         if (negative && positive) || det[k] == 0.0 {
             return None;
         }
-        Some((clamp(rays[k], triangle, t[k])?, bu[k], bv[k]))
+        Some((clamp(&rays.ray(first + k), triangle, t[k])?, bu[k], bv[k]))
     })
 }
 
@@ -334,7 +335,7 @@ mod tests {
     use glam::DVec3;
 
     use super::{RAYS, TriangleVertices, intersect, intersect_rays};
-    use crate::ray::{PreparedRay, Ray};
+    use crate::ray::{PreparedRay, PreparedRays, Ray};
     use shadowlab_test_random::SplitMix;
 
     /// A point with small integer coordinates: rays between such points meet edges and vertices
@@ -374,7 +375,7 @@ mod tests {
             if direction == DVec3::ZERO {
                 continue;
             }
-            let rays: Vec<PreparedRay> = (0..RAYS)
+            let held: Vec<Ray> = (0..RAYS)
                 .map(|k| {
                     let target = match (round + k) % 6 {
                         0 => p[k % 3],
@@ -388,20 +389,25 @@ mod tests {
                         1 if p[1] != p[0] => p[1] - p[0],
                         _ => direction,
                     };
-                    let ray = Ray::new(target - d * random.range(1.0, 3.0).round(), d)
-                        .expect("a valid ray");
-                    PreparedRay::new(&ray, 8.0).expect("a valid ray")
+                    Ray::new(target - d * random.range(1.0, 3.0).round(), d).expect("a valid ray")
                 })
+                .collect();
+            let rays: Vec<PreparedRay> = held
+                .iter()
+                .map(|ray| PreparedRay::new(ray, 8.0).expect("a valid ray"))
                 .collect();
             let kz = rays[0].kz;
             if rays.iter().any(|ray| ray.kz != kz) {
                 continue;
             }
-            let lanes: [&PreparedRay; RAYS] = std::array::from_fn(|k| &rays[k]);
+            // Held field by field, after a ray that is not among the four.
+            let mut lanes = PreparedRays::default();
+            let other = Ray::new(DVec3::ZERO, DVec3::X).expect("valid");
+            lanes.set_up(&[&[other], held.as_slice()].concat(), 8.0);
             let together = match kz {
-                0 => intersect_rays::<0>(lanes, &triangle),
-                1 => intersect_rays::<1>(lanes, &triangle),
-                _ => intersect_rays::<2>(lanes, &triangle),
+                0 => intersect_rays::<0>(&lanes, 1, &triangle),
+                1 => intersect_rays::<1>(&lanes, 1, &triangle),
+                _ => intersect_rays::<2>(&lanes, 1, &triangle),
             };
             for (k, ray) in rays.iter().enumerate() {
                 let one = match kz {

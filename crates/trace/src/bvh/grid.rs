@@ -45,7 +45,7 @@ use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 
 use crate::error::TraceError;
-use crate::ray::{Hit, PreparedRay, Ray};
+use crate::ray::{Hit, PreparedRay, PreparedRays, Ray};
 use crate::triangle::{self, RAYS, TriangleVertices};
 
 use super::{Bvh, check_range, vertices};
@@ -294,7 +294,10 @@ fn count_below(sorted: &[f64], value: f64, or_equal: bool) -> usize {
 #[derive(Default)]
 struct Rows {
     rays: Vec<Ray>,
-    prepared: Vec<PreparedRay>,
+    /// The rays set up, for the sweep.
+    prepared: PreparedRays,
+    /// The rays set up, for the tree where the sweep does not apply.
+    descending: Vec<PreparedRay>,
     /// The points' coordinates along their row.
     along: Vec<f64>,
     /// Per row, the extent of its points across the rows.
@@ -368,9 +371,20 @@ impl Bvh {
                     .and_then(|index| Some((index, self.slack(rows, &axes, row_len)?)));
                 match swept {
                     Some(((images, buckets), slack)) => {
+                        rows.prepared.set_up(&rows.rays, self.magnitude);
                         self.sweep(rows, row_len, images, buckets, slack, t_min, t_max);
                     }
-                    None => self.closest_item(&rows.prepared, t_min, t_max, &mut rows.hits),
+                    None => {
+                        let Rows {
+                            rays, descending, ..
+                        } = rows;
+                        descending.clear();
+                        descending.extend(
+                            rays.iter()
+                                .map(|ray| PreparedRay::set_up(ray, self.magnitude)),
+                        );
+                        self.closest_item(descending, t_min, t_max, &mut rows.hits);
+                    }
                 }
                 answer(&rows.rays, &rows.hits, out);
                 Ok(())
@@ -403,7 +417,7 @@ impl Bvh {
         images
     }
 
-    /// Rows `first_row..first_row + count` of the grid into `rows`, validated and set up.
+    /// Rows `first_row..first_row + count` of the grid into `rows`, validated.
     fn load(
         &self,
         rows: &mut Rows,
@@ -412,7 +426,7 @@ impl Bvh {
         count: usize,
         row: &(impl Fn(usize, &mut [Ray]) + Sync),
     ) -> Result<(), TraceError> {
-        let Rows { rays, prepared, .. } = rows;
+        let rays = &mut rows.rays;
         rays.clear();
         rays.resize(row_len * count, UNSET);
         for (j, rays) in rays.chunks_mut(row_len).enumerate() {
@@ -421,11 +435,6 @@ impl Bvh {
         for ray in rays.iter() {
             ray.validate()?;
         }
-        prepared.clear();
-        prepared.extend(
-            rays.iter()
-                .map(|ray| PreparedRay::set_up(ray, self.magnitude)),
-        );
         Ok(())
     }
 
@@ -506,14 +515,14 @@ impl Bvh {
                 let (mut k, end) = (first + start, first + end);
                 while k < end {
                     let id = image.id;
+                    let prepared = &rows.prepared;
                     if k + RAYS <= end {
-                        let rays: [&PreparedRay; RAYS] =
-                            std::array::from_fn(|i| &rows.prepared[k + i]);
-                        if rays.iter().all(|ray| ray.kz == rays[0].kz) {
-                            let found = match rays[0].kz {
-                                0 => triangle::intersect_rays::<0>(rays, &image.stored),
-                                1 => triangle::intersect_rays::<1>(rays, &image.stored),
-                                _ => triangle::intersect_rays::<2>(rays, &image.stored),
+                        let kz = &prepared.kz[k..k + RAYS];
+                        if kz.iter().all(|&axis| axis == kz[0]) {
+                            let found = match kz[0] {
+                                0 => triangle::intersect_rays::<0>(prepared, k, &image.stored),
+                                1 => triangle::intersect_rays::<1>(prepared, k, &image.stored),
+                                _ => triangle::intersect_rays::<2>(prepared, k, &image.stored),
                             };
                             for (best, found) in rows.hits[k..k + RAYS].iter_mut().zip(found) {
                                 keep(best, found, id, (t_min, t_max));
@@ -522,7 +531,7 @@ impl Bvh {
                             continue;
                         }
                     }
-                    let ray = &rows.prepared[k];
+                    let ray = &prepared.ray(k);
                     let found = match ray.kz {
                         0 => triangle::intersect::<0>(ray, &image.stored),
                         1 => triangle::intersect::<1>(ray, &image.stored),
