@@ -13,7 +13,7 @@ use rayon::prelude::*;
 const GATHER_CHUNK: usize = 8192;
 
 /// The items of `items` whose index and value `keep` accepts, in their order.
-pub(crate) fn gather<T: Copy + Send + Sync>(
+pub fn gather<T: Copy + Send + Sync>(
     items: &[T],
     keep: impl Fn(usize, &T) -> bool + Sync,
 ) -> Vec<T> {

@@ -229,8 +229,8 @@ impl PreparedRays {
         let padding = reach * f64x4::splat(BOX_PADDING_ULPS * f64::EPSILON);
         let range = first..first + 4;
         for axis in 0..3 {
-            let up = next_up(o[axis] + padding);
-            let down = next_down(o[axis] - padding);
+            let up = next_double(o[axis] + padding, true);
+            let down = next_double(o[axis] - padding, false);
             // Entry plane lo − e (direction ≥ 0) or hi + e (direction < 0); exit plane the other.
             let negative = [dx, dy, dz][axis].map(f64::is_sign_negative);
             let near: [f64; 4] = std::array::from_fn(|k| if negative[k] { down[k] } else { up[k] });
@@ -280,34 +280,19 @@ impl PreparedRays {
     }
 }
 
-/// `f64::next_up` of each lane of finite `x`: the bits one step up (toward +∞), the least
-/// positive subnormal from either zero.
+/// Of each lane of finite `x`, `f64::next_up` if `up`, else `f64::next_down`: on the bits, one
+/// step away from zero or toward it by the lane's sign, and from either zero the least subnormal
+/// of the direction's sign.
 #[inline(always)]
-fn next_up(x: f64x4) -> [f64; 4] {
+fn next_double(x: f64x4, up: bool) -> [f64; 4] {
     x.to_array().map(|x| {
         let bits = x.to_bits();
-        // One step away from zero for a negative x, toward it for a positive one.
-        let step = (bits >> 63).wrapping_mul(2).wrapping_sub(1);
+        // +1 (away from zero) going up from a positive lane or down from a negative one, else −1.
+        let away = (bits >> 63 == 0) == up;
         let next = if bits & !SIGN_BIT == 0 {
-            1
+            if up { 1 } else { SIGN_BIT | 1 }
         } else {
-            bits.wrapping_sub(step)
-        };
-        f64::from_bits(next)
-    })
-}
-
-/// `f64::next_down` of each lane of finite `x`: the bits one step down (toward −∞), the least
-/// negative subnormal from either zero.
-#[inline(always)]
-fn next_down(x: f64x4) -> [f64; 4] {
-    x.to_array().map(|x| {
-        let bits = x.to_bits();
-        let step = (bits >> 63).wrapping_mul(2).wrapping_sub(1);
-        let next = if bits & !SIGN_BIT == 0 {
-            SIGN_BIT | 1
-        } else {
-            bits.wrapping_add(step)
+            bits.wrapping_add(u64::from(away).wrapping_mul(2).wrapping_sub(1))
         };
         f64::from_bits(next)
     })
