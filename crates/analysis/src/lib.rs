@@ -33,7 +33,7 @@
 //! println!("{:.3} % misclassified", wrong.percentage());
 //! let (partition, map) = &frame.lights[0].maps[0];
 //! let footprints = aliasing::footprints(&partition.setup, map.resolution, &frame.eye, &scene.camera);
-//! let worst = aliasing::stats(footprints.iter().flatten().map(|f| f.total));
+//! let [worst, ..] = footprints.stats();
 //! println!("max {} pixels per texel, p99 {}", worst.max, worst.p99);
 //! # Ok(())
 //! # }
