@@ -142,6 +142,8 @@ pub(crate) struct PreparedRay {
 pub(crate) struct PreparedRays {
     /// [`PreparedRay::origin`], per axis.
     pub(crate) origin: [Vec<f64>; 3],
+    /// The rays' directions, per axis.
+    pub(crate) direction: [Vec<f64>; 3],
     /// [`PreparedRay::kz`].
     pub(crate) kz: Vec<u8>,
     /// [`PreparedRay::shear`], per component.
@@ -156,12 +158,15 @@ pub(crate) struct PreparedRays {
 }
 
 impl PreparedRays {
-    /// `rays` (validated, [`Ray::validate`]) set up against a mesh of magnitude `magnitude`, in
-    /// place of the rays held: four at a time in `f64x4` lanes, the last few one by one.
-    pub(crate) fn set_up(&mut self, rays: &[Ray], magnitude: f64) {
+    /// `rays` set up against a mesh of magnitude `magnitude`, in place of the rays held: four at a
+    /// time in `f64x4` lanes, the last few one by one. Whether every ray is valid
+    /// ([`Ray::validate`]); an invalid ray's set-up holds no meaningful values.
+    #[must_use]
+    pub(crate) fn set_up(&mut self, rays: &[Ray], magnitude: f64) -> bool {
         let fields = self
             .origin
             .iter_mut()
+            .chain(&mut self.direction)
             .chain(&mut self.shear)
             .chain(&mut self.inverse)
             .chain(&mut self.near_origin)
@@ -172,21 +177,25 @@ impl PreparedRays {
         }
         self.kz.clear();
         self.kz.resize(rays.len(), 0);
+        let mut valid = true;
         let mut fours = rays.chunks_exact(4);
         for (k, four) in (&mut fours).enumerate() {
-            self.set_four(4 * k, four, magnitude);
+            valid &= self.set_four(4 * k, four, magnitude);
         }
         let done = rays.len() - fours.remainder().len();
         for (k, ray) in fours.remainder().iter().enumerate() {
-            self.set(done + k, &PreparedRay::set_up(ray, magnitude));
+            valid &= ray.validate().is_ok();
+            self.set(done + k, ray, magnitude);
         }
+        valid
     }
 
     /// Rays `first..first + 4`, `rays`, set up side by side: [`PreparedRay::set_up`] lane by lane —
     /// the dominant axis chosen per lane, the same IEEE quotients, sums and products, and the next
     /// doubles up and down taken on the bits as `f64::next_up` and `f64::next_down` take them.
+    /// Whether all four are valid ([`Ray::validate`]'s conditions, lane by lane).
     #[inline(always)]
-    fn set_four(&mut self, first: usize, rays: &[Ray], magnitude: f64) {
+    fn set_four(&mut self, first: usize, rays: &[Ray], magnitude: f64) -> bool {
         let lanes = |f: fn(&Ray) -> f64| f64x4::new(std::array::from_fn(|k| f(&rays[k])));
         let o = [
             lanes(|r| r.origin.x),
@@ -225,8 +234,26 @@ impl PreparedRays {
         let [along_z, along_x, along_y] = picked.map(f64x4::new);
         let shear = [along_x / along_z, along_y / along_z, f64x4::ONE / along_z];
         let inverse = d.map(|d| f64x4::ONE / d);
-        let reach = f64x4::splat(magnitude) + o[0].abs().max(o[1].abs().max(o[2].abs()));
+        let farthest = o[0].abs().max(o[1].abs().max(o[2].abs()));
+        let reach = f64x4::splat(magnitude) + farthest;
         let padding = reach * f64x4::splat(BOX_PADDING_ULPS * f64::EPSILON);
+        let origins = o.map(f64x4::to_array);
+        let farthest = farthest.to_array();
+        let valid = (0..4).all(|k| {
+            let largest = ax[k].max(ay[k]).max(az[k]);
+            [
+                origins[0][k],
+                origins[1][k],
+                origins[2][k],
+                dx[k],
+                dy[k],
+                dz[k],
+            ]
+            .iter()
+            .all(|v| v.is_finite())
+                && farthest[k] <= MAX_COORDINATE
+                && (MIN_DIRECTION..=MAX_COORDINATE).contains(&largest)
+        });
         let range = first..first + 4;
         for axis in 0..3 {
             let up = next_double(o[axis] + padding, true);
@@ -235,19 +262,23 @@ impl PreparedRays {
             let negative = [dx, dy, dz][axis].map(f64::is_sign_negative);
             let near: [f64; 4] = std::array::from_fn(|k| if negative[k] { down[k] } else { up[k] });
             let far: [f64; 4] = std::array::from_fn(|k| if negative[k] { up[k] } else { down[k] });
-            self.origin[axis][range.clone()].copy_from_slice(&o[axis].to_array());
+            self.origin[axis][range.clone()].copy_from_slice(&origins[axis]);
+            self.direction[axis][range.clone()].copy_from_slice(&[dx, dy, dz][axis]);
             self.shear[axis][range.clone()].copy_from_slice(&shear[axis].to_array());
             self.inverse[axis][range.clone()].copy_from_slice(&inverse[axis].to_array());
             self.near_origin[axis][range.clone()].copy_from_slice(&near);
             self.far_origin[axis][range.clone()].copy_from_slice(&far);
         }
         self.kz[range].copy_from_slice(&kz);
+        valid
     }
 
-    /// Ray `k` set to `prepared`.
-    fn set(&mut self, k: usize, prepared: &PreparedRay) {
+    /// Ray `k` set to `ray`, set up one by one ([`PreparedRay::set_up`]).
+    fn set(&mut self, k: usize, ray: &Ray, magnitude: f64) {
+        let prepared = PreparedRay::set_up(ray, magnitude);
         for axis in 0..3 {
             self.origin[axis][k] = prepared.origin[axis];
+            self.direction[axis][k] = ray.direction[axis];
             self.shear[axis][k] = prepared.shear[axis];
             self.inverse[axis][k] = prepared.inverse[axis];
             self.near_origin[axis][k] = prepared.near_origin[axis];
@@ -270,6 +301,11 @@ impl PreparedRays {
             near_origin: at(&self.near_origin),
             far_origin: at(&self.far_origin),
         }
+    }
+
+    /// How many rays are held.
+    pub(crate) fn len(&self) -> usize {
+        self.kz.len()
     }
 
     /// Field `values` of the four rays from `first`.
@@ -402,7 +438,7 @@ mod tests {
     use glam::DVec3;
     use shadowlab_test_random::SplitMix;
 
-    use super::{PreparedRay, PreparedRays, Ray};
+    use super::{MAX_COORDINATE, MIN_DIRECTION, PreparedRay, PreparedRays, Ray};
 
     /// A coordinate that is often a special case: either zero, a tie with another axis, or random.
     fn coordinate(random: &mut SplitMix, tie: f64) -> f64 {
@@ -438,7 +474,7 @@ mod tests {
                 })
                 .collect();
             let mut held = PreparedRays::default();
-            held.set_up(&rays, 8.0);
+            assert!(held.set_up(&rays, 8.0), "{count} valid rays");
             for (k, ray) in rays.iter().enumerate() {
                 let (four, one) = (held.ray(k), PreparedRay::set_up(ray, 8.0));
                 let bits = |p: &PreparedRay| {
@@ -448,5 +484,31 @@ mod tests {
                 assert_eq!(bits(&four), bits(&one), "ray {k} of {count}: {ray:?}");
             }
         }
+    }
+
+    /// Claim: the set-up reports an invalid ray wherever it stands — in a lane or in the tail —
+    /// for each of `Ray::validate`'s conditions, and only then.
+    #[test]
+    fn set_up_reports_what_validate_rejects() {
+        let valid = Ray::new(DVec3::ONE, DVec3::NEG_Z).expect("valid");
+        let invalid = [
+            (DVec3::new(f64::NAN, 0.0, 0.0), DVec3::Z),
+            (DVec3::ZERO, DVec3::new(0.0, f64::INFINITY, 0.0)),
+            (DVec3::new(0.0, 0.0, 2.0 * MAX_COORDINATE), DVec3::Z),
+            (DVec3::ZERO, DVec3::ZERO),
+            (DVec3::ZERO, DVec3::new(0.0, 0.5 * MIN_DIRECTION, 0.0)),
+            (DVec3::ZERO, DVec3::new(2.0 * MAX_COORDINATE, 1.0, 0.0)),
+        ];
+        let mut held = PreparedRays::default();
+        for (origin, direction) in invalid {
+            let bad = Ray { origin, direction };
+            assert!(bad.validate().is_err());
+            for at in [0, 3, 5, 9] {
+                let mut rays = vec![valid; 10];
+                rays[at] = bad;
+                assert!(!held.set_up(&rays, 8.0), "{bad:?} at {at}");
+            }
+        }
+        assert!(held.set_up(&[valid; 10], 8.0));
     }
 }

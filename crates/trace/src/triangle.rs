@@ -403,7 +403,7 @@ mod tests {
             // Held field by field, after a ray that is not among the four.
             let mut lanes = PreparedRays::default();
             let other = Ray::new(DVec3::ZERO, DVec3::X).expect("valid");
-            lanes.set_up(&[&[other], held.as_slice()].concat(), 8.0);
+            assert!(lanes.set_up(&[&[other], held.as_slice()].concat(), 8.0));
             let together = match kz {
                 0 => intersect_rays::<0>(&lanes, 1, &triangle),
                 1 => intersect_rays::<1>(&lanes, 1, &triangle),

@@ -43,6 +43,7 @@
 
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
+use wide::f64x4;
 
 use crate::error::TraceError;
 use crate::ray::{Hit, PreparedRay, PreparedRays, Ray};
@@ -300,6 +301,8 @@ struct Rows {
     descending: Vec<PreparedRay>,
     /// The points' coordinates along their row.
     along: Vec<f64>,
+    /// The points' coordinates across the rows.
+    across: Vec<f64>,
     /// Per row, the extent of its points across the rows.
     lo: Vec<f64>,
     hi: Vec<f64>,
@@ -362,7 +365,13 @@ impl Bvh {
             .try_for_each_init(Rows::default, |rows, (item, out)| {
                 let first_row = item * rows_per_item;
                 let count = out.len() / row_len;
-                self.load(rows, row_len, first_row, count, &row)?;
+                Self::load(rows, row_len, first_row, count, &row);
+                if !rows.prepared.set_up(&rows.rays, self.magnitude) {
+                    // The first invalid ray's error, as one by one.
+                    for ray in &rows.rays {
+                        ray.validate()?;
+                    }
+                }
                 rows.hits.clear();
                 rows.hits.resize(rows.rays.len(), None);
                 // The rows seen on the plane only for a grid that may be swept.
@@ -371,18 +380,16 @@ impl Bvh {
                     .and_then(|index| Some((index, self.slack(rows, &axes, row_len)?)));
                 match swept {
                     Some(((images, buckets), slack)) => {
-                        rows.prepared.set_up(&rows.rays, self.magnitude);
                         self.sweep(rows, row_len, images, buckets, slack, t_min, t_max);
                     }
                     None => {
                         let Rows {
-                            rays, descending, ..
+                            prepared,
+                            descending,
+                            ..
                         } = rows;
                         descending.clear();
-                        descending.extend(
-                            rays.iter()
-                                .map(|ray| PreparedRay::set_up(ray, self.magnitude)),
-                        );
+                        descending.extend((0..prepared.len()).map(|k| prepared.ray(k)));
                         self.closest_item(descending, t_min, t_max, &mut rows.hits);
                     }
                 }
@@ -417,62 +424,79 @@ impl Bvh {
         images
     }
 
-    /// Rows `first_row..first_row + count` of the grid into `rows`, validated.
+    /// Rows `first_row..first_row + count` of the grid into `rows`.
     fn load(
-        &self,
         rows: &mut Rows,
         row_len: usize,
         first_row: usize,
         count: usize,
         row: &(impl Fn(usize, &mut [Ray]) + Sync),
-    ) -> Result<(), TraceError> {
+    ) {
         let rays = &mut rows.rays;
         rays.clear();
         rays.resize(row_len * count, UNSET);
         for (j, rays) in rays.chunks_mut(row_len).enumerate() {
             row(first_row + j, rays);
         }
-        for ray in rays.iter() {
-            ray.validate()?;
-        }
-        Ok(())
     }
 
     /// The loaded rows seen on the plane (`along`, `lo`, `hi` of `rows`), and the slack δ of the
     /// module documentation; `None` if the rays are not parallel enough or a row is not sorted
-    /// along itself.
+    /// along itself. Read from the set-up rays' arrays four rays at a time (each lane the dot
+    /// products of `Axes::plane` in their order; the extremes are exact in any order).
     fn slack(&self, rows: &mut Rows, axes: &Axes, row_len: usize) -> Option<f64> {
         let Rows {
-            rays,
+            prepared,
             along,
+            across,
             lo,
             hi,
             ..
         } = rows;
+        let n = prepared.len();
         along.clear();
+        along.resize(n, 0.0);
+        across.clear();
+        across.resize(n, 0.0);
+        let splat = |v: DVec3| [v.x, v.y, v.z].map(f64x4::splat);
+        let (on_along, on_across, on_axis) =
+            (splat(axes.along), splat(axes.across), splat(axes.axis));
+        let dot = |v: &[f64x4; 3], w: &[f64x4; 3]| v[0] * w[0] + v[1] * w[1] + v[2] * w[2];
+        // The slope's bound: the largest |L(d)|² over the smallest d·a (all positive).
+        let (mut sideways, mut ahead, mut reach) =
+            (f64x4::ZERO, f64x4::splat(f64::INFINITY), f64x4::ZERO);
+        let fours = n / 4 * 4;
+        for k in (0..fours).step_by(4) {
+            let lanes = |field: &[Vec<f64>; 3]| field.each_ref().map(|v| PreparedRays::lanes(v, k));
+            let (o, d) = (lanes(&prepared.origin), lanes(&prepared.direction));
+            along[k..k + 4].copy_from_slice(&dot(&o, &on_along).to_array());
+            across[k..k + 4].copy_from_slice(&dot(&o, &on_across).to_array());
+            let (x, y) = (dot(&d, &on_along), dot(&d, &on_across));
+            sideways = sideways.max(x * x + y * y);
+            ahead = ahead.min(dot(&d, &on_axis));
+            reach = reach.max(o[0].abs().max(o[1].abs().max(o[2].abs())));
+        }
+        let (mut sideways, mut ahead, mut reach) = (
+            sideways.to_array().into_iter().fold(0.0_f64, f64::max),
+            ahead.to_array().into_iter().fold(f64::INFINITY, f64::min),
+            reach.to_array().into_iter().fold(0.0_f64, f64::max),
+        );
+        for k in fours..n {
+            let at = |field: &[Vec<f64>; 3]| DVec3::new(field[0][k], field[1][k], field[2][k]);
+            let (origin, direction) = (at(&prepared.origin), at(&prepared.direction));
+            let point = axes.plane(origin);
+            (along[k], across[k]) = (point.x, point.y);
+            sideways = sideways.max(axes.plane(direction).length_squared());
+            ahead = ahead.min(direction.dot(axes.axis));
+            reach = reach.max(origin.abs().max_element());
+        }
         lo.clear();
         hi.clear();
         let mut sorted = true;
-        // The slope's bound: the largest |L(d)|² over the smallest d·a (all positive).
-        let (mut sideways, mut ahead, mut reach) = (0.0_f64, f64::INFINITY, 0.0_f64);
-        for rays in rays.chunks(row_len) {
-            let (mut low, mut high, mut previous) =
-                (f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY);
-            for ray in rays {
-                let point = axes.plane(ray.origin);
-                if point.x < previous {
-                    sorted = false;
-                }
-                previous = point.x;
-                along.push(point.x);
-                low = low.min(point.y);
-                high = high.max(point.y);
-                sideways = sideways.max(axes.plane(ray.direction).length_squared());
-                ahead = ahead.min(ray.direction.dot(axes.axis));
-                reach = reach.max(ray.origin.abs().max_element());
-            }
-            lo.push(low);
-            hi.push(high);
+        for (along, across) in along.chunks(row_len).zip(across.chunks(row_len)) {
+            sorted &= along.windows(2).all(|pair| pair[1] >= pair[0]);
+            lo.push(across.iter().copied().fold(f64::INFINITY, f64::min));
+            hi.push(across.iter().copied().fold(f64::NEG_INFINITY, f64::max));
         }
         let reach = self.magnitude + reach;
         // At least every ray's |L(d)|/(d·a); false for rays across or against the axis.
@@ -602,7 +626,11 @@ mod tests {
         let axes = Axes::of(&rays[0], &rays[3]);
         let row = |j: usize, out: &mut [Ray]| out.copy_from_slice(&rays[4 * j..4 * j + 4]);
         let mut rows = Rows::default();
-        bvh.load(&mut rows, 4, 0, 3, &row).expect("valid rays");
+        Bvh::load(&mut rows, 4, 0, 3, &row);
+        assert!(
+            rows.prepared.set_up(&rows.rays, bvh.magnitude),
+            "valid rays"
+        );
         bvh.slack(&mut rows, &axes, 4)
     }
 
@@ -618,6 +646,62 @@ mod tests {
         let mut unsorted = parallel;
         unsorted.swap(4, 5);
         assert_eq!(slack(&bvh, &unsorted), None);
+    }
+
+    /// The slack read four rays at a time is, to the bit, the slack and the rows' extents of the
+    /// one-ray formulas (`Axes::plane` per origin and direction), on rows whose length leaves a
+    /// tail of one to three rays, of parallel rays at random offsets.
+    #[test]
+    fn slack_in_lanes_is_each_rays_own() {
+        let bvh = square();
+        let mut random = shadowlab_test_random::SplitMix(0x5eed_0000_0000_51ac);
+        for row_len in [1, 4, 5, 7] {
+            let direction = DVec3::new(1e-9 * random.range(-1.0, 1.0), 0.0, -1.0);
+            let rays: Vec<Ray> = (0..3 * row_len)
+                .map(|k| {
+                    let (i, j) = ((k % row_len) as f64, (k / row_len) as f64);
+                    let jitter = random.range(0.0, 1e-3);
+                    let origin = DVec3::new(0.3 * i + jitter, 0.4 * j + jitter, 1.0 + jitter);
+                    Ray { origin, direction }
+                })
+                .collect();
+            let axes = Axes::of(&rays[0], &rays[row_len - 1]);
+            let row = |j: usize, out: &mut [Ray]| {
+                out.copy_from_slice(&rays[row_len * j..row_len * (j + 1)]);
+            };
+            let mut rows = Rows::default();
+            Bvh::load(&mut rows, row_len, 0, 3, &row);
+            assert!(rows.prepared.set_up(&rows.rays, bvh.magnitude));
+            let slack = bvh.slack(&mut rows, &axes, row_len);
+            // The one-ray formulas.
+            let (mut sideways, mut ahead, mut reach) = (0.0_f64, f64::INFINITY, 0.0_f64);
+            let mut extents = Vec::new();
+            for row in rays.chunks(row_len) {
+                let (mut low, mut high) = (f64::INFINITY, f64::NEG_INFINITY);
+                for ray in row {
+                    let point = axes.plane(ray.origin);
+                    low = low.min(point.y);
+                    high = high.max(point.y);
+                    sideways = sideways.max(axes.plane(ray.direction).length_squared());
+                    ahead = ahead.min(ray.direction.dot(axes.axis));
+                    reach = reach.max(ray.origin.abs().max_element());
+                }
+                extents.push((low, high));
+            }
+            let along: Vec<f64> = rays.iter().map(|r| axes.plane(r.origin).x).collect();
+            let reach = bvh.magnitude + reach;
+            let slope = sideways.sqrt() / ahead;
+            let expected = SLACK * reach + 4.0 * reach * slope;
+            assert_eq!(
+                slack.map(f64::to_bits),
+                Some(expected.to_bits()),
+                "{row_len}"
+            );
+            let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            assert_eq!(bits(&rows.along), bits(&along), "{row_len}");
+            let (lo, hi): (Vec<f64>, Vec<f64>) = extents.into_iter().unzip();
+            assert_eq!((bits(&rows.lo), bits(&rows.hi)), (bits(&lo), bits(&hi)));
+        }
     }
 
     /// `count_below` is `partition_point`, on even rows (where the guess is right) and uneven
