@@ -431,15 +431,6 @@ impl FrameFootprints {
         })
     }
 
-    /// How many pixels have a footprint.
-    #[must_use]
-    pub fn defined(&self) -> usize {
-        self.parts
-            .iter()
-            .filter(|[total, ..]| !total.is_nan())
-            .count()
-    }
-
     /// The statistics of the total, perspective and projection parts, in that order ([`stats`]),
     /// from one read of the footprints.
     #[must_use]

@@ -549,7 +549,6 @@ fn footprints_are_each_pixels_footprint_to_the_bit() {
             defined += usize::from(alone.is_some());
         }
         assert!(defined > 10_000, "{technique}: {defined}");
-        assert_eq!(frame.defined(), defined, "{technique}");
         // The statistics of the three parts, as `stats` of each part of the defined footprints.
         let parts: [fn(&Footprint) -> f64; 3] = [|f| f.total, |f| f.perspective, |f| f.projection];
         for (summary, part) in frame.stats().iter().zip(parts) {
