@@ -137,7 +137,7 @@ pub(crate) struct PreparedRay {
 /// Rays set up as [`PreparedRay`] sets each up, held field by field (a structure of arrays), so
 /// that the fields of any four consecutive rays load as vectors: a grid's rows, tested four rays
 /// at a time against one triangle (`triangle::intersect_rays`). Set up four at a time
-/// ([`PreparedRays::extend`]), each lane the one-ray operations, so the same bits.
+/// ([`PreparedRays::set_up`]), each lane the one-ray operations, so the same bits.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct PreparedRays {
     /// [`PreparedRay::origin`], per axis.

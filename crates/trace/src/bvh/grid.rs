@@ -366,30 +366,34 @@ impl Bvh {
                 let first_row = item * rows_per_item;
                 let count = out.len() / row_len;
                 Self::load(rows, row_len, first_row, count, &row);
-                if !rows.prepared.set_up(&rows.rays, self.magnitude) {
-                    // The first invalid ray's error, as one by one.
-                    for ray in &rows.rays {
-                        ray.validate()?;
+                // Set up field by field and seen on the plane only for a grid that may be swept.
+                let swept = match index.as_ref() {
+                    Some(index) => {
+                        if !rows.prepared.set_up(&rows.rays, self.magnitude) {
+                            Self::validate(&rows.rays)?;
+                        }
+                        self.slack(rows, &axes, row_len).map(|slack| (index, slack))
                     }
-                }
+                    None => {
+                        Self::validate(&rows.rays)?;
+                        None
+                    }
+                };
                 rows.hits.clear();
                 rows.hits.resize(rows.rays.len(), None);
-                // The rows seen on the plane only for a grid that may be swept.
-                let swept = index
-                    .as_ref()
-                    .and_then(|index| Some((index, self.slack(rows, &axes, row_len)?)));
                 match swept {
                     Some(((images, buckets), slack)) => {
                         self.sweep(rows, row_len, images, buckets, slack, t_min, t_max);
                     }
                     None => {
                         let Rows {
-                            prepared,
-                            descending,
-                            ..
+                            rays, descending, ..
                         } = rows;
                         descending.clear();
-                        descending.extend((0..prepared.len()).map(|k| prepared.ray(k)));
+                        descending.extend(
+                            rays.iter()
+                                .map(|ray| PreparedRay::set_up(ray, self.magnitude)),
+                        );
                         self.closest_item(descending, t_min, t_max, &mut rows.hits);
                     }
                 }
@@ -422,6 +426,11 @@ impl Bvh {
             .collect();
         images.par_sort_unstable_by(|p, q| p.lo.total_cmp(&q.lo).then(p.id.cmp(&q.id)));
         images
+    }
+
+    /// The [`Ray::validate`] error of the first invalid ray of `rays`, if any.
+    fn validate(rays: &[Ray]) -> Result<(), TraceError> {
+        rays.iter().try_for_each(Ray::validate)
     }
 
     /// Rows `first_row..first_row + count` of the grid into `rows`.
@@ -520,7 +529,9 @@ impl Bvh {
     ) {
         let band_lo = rows.lo.iter().copied().fold(f64::INFINITY, f64::min) - slack;
         let band_hi = rows.hi.iter().copied().fold(f64::NEG_INFINITY, f64::max) + slack;
+        let prepared = &rows.prepared;
         for image in buckets.meeting(images, band_lo, band_hi) {
+            let id = image.id;
             for (row, (&lo, &hi)) in rows.lo.iter().zip(&rows.hi).enumerate() {
                 let (lo, hi) = (lo - slack, hi + slack);
                 if image.lo > hi || image.hi < lo {
@@ -538,8 +549,6 @@ impl Bvh {
                 // (`triangle::intersect_rays`: each ray's own answer), one by one elsewhere.
                 let (mut k, end) = (first + start, first + end);
                 while k < end {
-                    let id = image.id;
-                    let prepared = &rows.prepared;
                     if k + RAYS <= end {
                         let kz = &prepared.kz[k..k + RAYS];
                         if kz.iter().all(|&axis| axis == kz[0]) {
