@@ -643,14 +643,16 @@ fn lit_rows_together(
     };
     for (block, values) in rows.chunks_mut(LANES).enumerate() {
         let first = first + block * LANES;
-        let served: [Option<Served>; LANES] =
-            std::array::from_fn(|k| (k < values.len()).then(|| serving(first + k))?);
-        if let Some(lit) = lit_block(shadow, lookups, image, first, &served) {
-            values.copy_from_slice(&lit);
+        if let Ok(values) = <&mut [f64; LANES]>::try_from(&mut *values)
+            && let Some(lit) = lit_block(shadow, lookups, image, first, serving)
+        {
+            *values = lit;
             continue;
         }
         for (k, value) in values.iter_mut().enumerate() {
-            let Some(serving) = served[k] else { continue };
+            let Some(serving) = serving(first + k) else {
+                continue;
+            };
             let (position, normal) = (image.position[first + k], image.normal[first + k]);
             *value = serving.combine(|index| {
                 lookups[index].lit_fraction(&shadow.maps[index].1, position, normal)
@@ -659,30 +661,46 @@ fn lit_rows_together(
     }
 }
 
-/// The lit fractions of the [`LANES`] pixels from `first`, served as `served` says, looked up
-/// together (`Lookup::lit_fractions`: the same values as one by one) if all are visible and served
-/// by one map without a blend; `None` otherwise.
+/// The lit fractions of the [`LANES`] pixels from `first`, each served as `serving` says, looked
+/// up together (`Lookup::lit_fractions`: the same values as one by one) if all are visible and
+/// served by one map without a blend; `None` otherwise (the caller then asks `serving` again,
+/// pixel by pixel).
+///
+/// Nothing here gathers the lanes' [`Served`] or points into an array of its own: such an array,
+/// written field by field and then moved whole, is read back by vector loads that wait for the
+/// scalar stores that wrote it (a store-forwarding stall; docs/benchmarks.md). The points are read
+/// where they lie, and each lane's fade is kept as it is found.
 fn lit_block(
     shadow: &LightShadow,
     lookups: &[Lookup],
     image: &EyeImage,
     first: usize,
-    served: &[Option<Served>; LANES],
+    serving: impl Fn(usize) -> Option<Served>,
 ) -> Option<[f64; LANES]> {
-    let [Some(a), Some(b), Some(c), Some(d)] = *served else {
-        return None;
-    };
-    let served = [a, b, c, d];
-    let index = a.index;
-    if served.iter().any(|s| s.index != index || s.blend.is_some()) {
-        return None;
+    let mut index = None;
+    let mut fade = [0.0; LANES];
+    for (k, fade) in fade.iter_mut().enumerate() {
+        let served = serving(first + k)?;
+        if served.blend.is_some() || index.is_some_and(|index| index != served.index) {
+            return None;
+        }
+        index = Some(served.index);
+        *fade = served.fade;
     }
-    let at = |field: &[DVec3]| std::array::from_fn(|k| field[first + k]);
+    let index = index?;
+    let lanes = first..first + LANES;
     let lit = lookups[index].lit_fractions(
         &shadow.maps[index].1,
-        &at(&image.position),
-        &at(&image.normal),
+        image.position[lanes.clone()].try_into().ok()?,
+        image.normal[lanes].try_into().ok()?,
     )?;
     // `Served::combine` (no blend: the one map's value, faded) with the block's values.
-    Some(std::array::from_fn(|k| served[k].combine(|_| lit[k])))
+    Some(std::array::from_fn(|k| {
+        let served = Served {
+            index,
+            blend: None,
+            fade: fade[k],
+        };
+        served.combine(|_| lit[k])
+    }))
 }
