@@ -171,11 +171,11 @@ impl PreparedRays {
             .chain(&mut self.inverse)
             .chain(&mut self.near_origin)
             .chain(&mut self.far_origin);
+        // Every entry is written below: a work item as long as the last one resizes nothing
+        // (clearing first would zero every array again: 4 % of the logarithmic map's pass in perf).
         for field in fields {
-            field.clear();
             field.resize(rays.len(), 0.0);
         }
-        self.kz.clear();
         self.kz.resize(rays.len(), 0);
         let mut valid = true;
         let mut fours = rays.chunks_exact(4);
@@ -455,11 +455,13 @@ mod tests {
     /// Claim: rays set up four at a time (`PreparedRays::set_up`) hold, ray by ray, every field of
     /// `PreparedRay::set_up` to the bit — over origins and directions with zeros of either sign,
     /// tied components (the dominant axis's first-on-ties rule), subnormals, and counts that leave
-    /// one to three rays for the one-by-one path.
+    /// one to three rays for the one-by-one path — one holder set up again and again, its counts
+    /// growing and shrinking, holding nothing of the set-up before.
     #[test]
     fn rays_set_up_four_at_a_time_are_each_rays_set_up() {
         let mut random = SplitMix(0x5eed_0000_0000_5e70);
-        for count in [1, 4, 7, 64, 1023] {
+        let mut held = PreparedRays::default();
+        for count in [1, 4, 7, 64, 1023, 7, 64, 5, 1] {
             let rays: Vec<Ray> = (0..count)
                 .map(|_| {
                     loop {
@@ -473,8 +475,8 @@ mod tests {
                     }
                 })
                 .collect();
-            let mut held = PreparedRays::default();
             assert!(held.set_up(&rays, 8.0), "{count} valid rays");
+            assert_eq!(held.len(), count);
             for (k, ray) in rays.iter().enumerate() {
                 let (four, one) = (held.ray(k), PreparedRay::set_up(ray, 8.0));
                 let bits = |p: &PreparedRay| {

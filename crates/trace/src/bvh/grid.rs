@@ -463,9 +463,8 @@ impl Bvh {
             ..
         } = rows;
         let n = prepared.len();
-        along.clear();
+        // Every entry is written below (as in `PreparedRays::set_up`, nothing is cleared first).
         along.resize(n, 0.0);
-        across.clear();
         across.resize(n, 0.0);
         let splat = |v: DVec3| [v.x, v.y, v.z].map(f64x4::splat);
         let (on_along, on_across, on_axis) =
