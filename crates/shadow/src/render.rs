@@ -22,7 +22,7 @@ use crate::optimal::{self, OptimalOptions};
 use crate::partition::{Partition, Region};
 use crate::plan::{Splits, plan_partitions};
 use crate::selection::Selection;
-use crate::serving::{Served, served};
+use crate::serving::{Served, served, sole_map};
 use crate::snap::snap_to_texels;
 use crate::technique::Technique;
 use crate::{cube, paraboloid, sdsm};
@@ -629,9 +629,13 @@ fn lit_rows_together(
     first: usize,
     rows: &mut [f64],
 ) {
+    let sole = sole_map(&shadow.maps, &shadow.selection);
     let serving = |pixel: usize| {
         if image.triangle[pixel] == NO_TRIANGLE {
             return None;
+        }
+        if sole.is_some() {
+            return sole;
         }
         served(
             &shadow.maps,

@@ -58,6 +58,12 @@ const SOLE_MAP: Served = Served {
     fade: 0.0,
 };
 
+/// What [`served`] gives every point, if one map serves everything (see [`served`]): decided once
+/// for many points, so that they need not be read.
+pub(crate) fn sole_map<T>(partitions: &[T], selection: &Selection) -> Option<Served> {
+    serves_everything(partitions, selection).then_some(SOLE_MAP)
+}
+
 /// Whether one partition serves every point, unblended and unfaded: the only partition, the last
 /// serving beyond it ([`Beyond::Last`]), no fade. Then both rules pick it (the depth rule by
 /// `Beyond::Last` where the point lies beyond its far end; a face group of one member is that
