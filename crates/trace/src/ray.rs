@@ -207,7 +207,8 @@ impl PreparedRays {
             lanes(|r| r.direction.y),
             lanes(|r| r.direction.z),
         ];
-        let [ax, ay, az] = d.map(|d| d.abs().to_array());
+        let abs = d.map(f64x4::abs);
+        let [ax, ay, az] = abs.map(f64x4::to_array);
         let [dx, dy, dz] = d.map(f64x4::to_array);
         // Per lane, `d[kz]`, `d[kx]`, `d[ky]` for `PreparedRay::set_up`'s dominant axis `kz`.
         let mut kz = [0_u8; 4];
@@ -237,23 +238,18 @@ impl PreparedRays {
         let farthest = o[0].abs().max(o[1].abs().max(o[2].abs()));
         let reach = f64x4::splat(magnitude) + farthest;
         let padding = reach * f64x4::splat(BOX_PADDING_ULPS * f64::EPSILON);
+        // `Ray::validate`'s conditions as lane masks (where every coordinate is finite, the
+        // maxima are those of the one-ray check), kept in registers: gathered per lane into an
+        // array, they were read back across the stores that wrote them (a store-forwarding stall).
+        let finite = [o[1], o[2], d[0], d[1], d[2]]
+            .into_iter()
+            .fold(o[0].is_finite(), |all, v| all & v.is_finite());
+        let largest = abs[0].max(abs[1]).max(abs[2]);
+        let (least, most) = (f64x4::splat(MIN_DIRECTION), f64x4::splat(MAX_COORDINATE));
+        let valid =
+            (finite & farthest.simd_le(most) & largest.simd_ge(least) & largest.simd_le(most))
+                .all();
         let origins = o.map(f64x4::to_array);
-        let farthest = farthest.to_array();
-        let valid = (0..4).all(|k| {
-            let largest = ax[k].max(ay[k]).max(az[k]);
-            [
-                origins[0][k],
-                origins[1][k],
-                origins[2][k],
-                dx[k],
-                dy[k],
-                dz[k],
-            ]
-            .iter()
-            .all(|v| v.is_finite())
-                && farthest[k] <= MAX_COORDINATE
-                && (MIN_DIRECTION..=MAX_COORDINATE).contains(&largest)
-        });
         let range = first..first + 4;
         for axis in 0..3 {
             let up = next_double(o[axis] + padding, true);
