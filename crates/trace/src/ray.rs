@@ -310,6 +310,27 @@ impl PreparedRays {
         let four: [f64; 4] = values[first..first + 4].try_into().expect("four values");
         f64x4::new(four)
     }
+
+    /// [`PreparedRay::slab`] of the four rays from `first` against the box `lo..hi`, from
+    /// `(−∞, ∞)`: each lane the one-ray operations in their order (the entry and exit planes picked
+    /// by the sign of `inverse`, the same differences and products, a bound replaced only where the
+    /// new one is strictly tighter), so the same bits.
+    #[inline(always)]
+    pub(crate) fn slabs(&self, first: usize, lo: [f64; 3], hi: [f64; 3]) -> (f64x4, f64x4) {
+        let mut near = f64x4::splat(f64::NEG_INFINITY);
+        let mut far = f64x4::splat(f64::INFINITY);
+        for axis in 0..3 {
+            let inverse = Self::lanes(&self.inverse[axis], first);
+            let negative = inverse.is_sign_negative();
+            let (lo, hi) = (f64x4::splat(lo[axis]), f64x4::splat(hi[axis]));
+            let (entry, exit) = (negative.bitselect(hi, lo), negative.bitselect(lo, hi));
+            let t_entry = (entry - Self::lanes(&self.near_origin[axis], first)) * inverse;
+            let t_exit = (exit - Self::lanes(&self.far_origin[axis], first)) * inverse;
+            near = t_entry.simd_gt(near).bitselect(t_entry, near);
+            far = t_exit.simd_lt(far).bitselect(t_exit, far);
+        }
+        (near, far)
+    }
 }
 
 /// Of each lane of finite `x`, `f64::next_up` if `up`, else `f64::next_down`: on the bits, one

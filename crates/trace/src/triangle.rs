@@ -236,14 +236,20 @@ fn cross_lanes(ax: f64x4, ay: f64x4, bx: f64x4, by: f64x4) -> f64x4 {
 /// [`intersect`] of the four rays of `rays` from `first`, which share their dominant axis `KZ`,
 /// against one triangle, the rays in lanes: each lane performs [`watertight`]'s operations in its
 /// order (the sheared vertices, the three edge functions with their exact signs, the determinant,
-/// `t`, `u` and `v`: the divisions of four rays in one instruction each), then [`intersect`]'s
-/// clamp for the lanes that hit — the same `(t, u, v)` as [`intersect`] for each ray, bit for bit.
+/// `t`, `u` and `v`: the divisions of four rays in one instruction each) and [`intersect`]'s clamp
+/// (the triangle's box once, each lane's slab: `PreparedRays::slabs`); `hit(k, (t, u, v))` for
+/// each ray `first + k` that hits — the same `(t, u, v)` as [`intersect`] gives it, bit for bit.
+///
+/// The hits are handed over lane by lane rather than returned as an array of options: such an
+/// array, written field by field, was read back across the stores that wrote it (a
+/// store-forwarding stall; docs/benchmarks.md).
 #[inline(always)]
 pub(crate) fn intersect_rays<const KZ: usize>(
     rays: &PreparedRays,
     first: usize,
     triangle: &TriangleVertices,
-) -> [Option<(f64, f64, f64)>; RAYS] {
+    mut hit: impl FnMut(usize, (f64, f64, f64)),
+) {
     let (kx, ky) = ((KZ + 1) % 3, (KZ + 2) % 3);
     let lanes = |values: &[f64]| PreparedRays::lanes(values, first);
     let (ox, oy, oz) = (
@@ -271,15 +277,32 @@ pub(crate) fn intersect_rays<const KZ: usize>(
     let det = u + v + w;
     let t = (u * (sz * az) + v * (sz * bz) + w * (sz * cz)) / det;
     let (bu, bv) = (v / det, w / det);
-    let [u, v, w, det, t, bu, bv] = [u, v, w, det, t, bu, bv].map(f64x4::to_array);
-    std::array::from_fn(|k| {
-        let negative = u[k] < 0.0 || v[k] < 0.0 || w[k] < 0.0;
-        let positive = u[k] > 0.0 || v[k] > 0.0 || w[k] > 0.0;
-        if (negative && positive) || det[k] == 0.0 {
-            return None;
+    // `watertight`'s decision: an edge function of each sign, or a zero determinant, misses.
+    let zero = f64x4::ZERO;
+    let negative = u.simd_lt(zero) | v.simd_lt(zero) | w.simd_lt(zero);
+    let positive = u.simd_gt(zero) | v.simd_gt(zero) | w.simd_gt(zero);
+    let missed = ((negative & positive) | det.simd_eq(zero)).to_bitmask();
+    if missed == (1 << RAYS) - 1 {
+        return;
+    }
+    let (lo, hi) = bounds(triangle);
+    let (near, far) = rays.slabs(first, lo, hi);
+    let [t, near, far, bu, bv] = [t, near, far, bu, bv].map(f64x4::to_array);
+    for k in 0..RAYS {
+        if missed & (1 << k) != 0 {
+            continue;
         }
-        Some((clamp(&rays.ray(first + k), triangle, t[k])?, bu[k], bv[k]))
-    })
+        // `clamp`'s check and clamp.
+        debug_assert!(
+            near[k] <= far[k],
+            "a watertight hit outside its padded box: {} > {}",
+            near[k],
+            far[k]
+        );
+        if near[k] <= far[k] {
+            hit(k, (t[k].max(near[k]).min(far[k]), bu[k], bv[k]));
+        }
+    }
 }
 
 /// The smallest box holding the triangle: `(lo, hi)`.
@@ -404,11 +427,13 @@ mod tests {
             let mut lanes = PreparedRays::default();
             let other = Ray::new(DVec3::ZERO, DVec3::X).expect("valid");
             assert!(lanes.set_up(&[&[other], held.as_slice()].concat(), 8.0));
-            let together = match kz {
-                0 => intersect_rays::<0>(&lanes, 1, &triangle),
-                1 => intersect_rays::<1>(&lanes, 1, &triangle),
-                _ => intersect_rays::<2>(&lanes, 1, &triangle),
-            };
+            let mut together = [None; RAYS];
+            let mut found = |k: usize, hit| together[k] = Some(hit);
+            match kz {
+                0 => intersect_rays::<0>(&lanes, 1, &triangle, &mut found),
+                1 => intersect_rays::<1>(&lanes, 1, &triangle, &mut found),
+                _ => intersect_rays::<2>(&lanes, 1, &triangle, &mut found),
+            }
             for (k, ray) in rays.iter().enumerate() {
                 let one = match kz {
                     0 => intersect::<0>(ray, &triangle),

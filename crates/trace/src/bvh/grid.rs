@@ -551,13 +551,15 @@ impl Bvh {
                     if k + RAYS <= end {
                         let kz = &prepared.kz[k..k + RAYS];
                         if kz.iter().all(|&axis| axis == kz[0]) {
-                            let found = match kz[0] {
-                                0 => triangle::intersect_rays::<0>(prepared, k, &image.stored),
-                                1 => triangle::intersect_rays::<1>(prepared, k, &image.stored),
-                                _ => triangle::intersect_rays::<2>(prepared, k, &image.stored),
+                            let best = &mut rows.hits[k..k + RAYS];
+                            let found = |lane: usize, found| {
+                                keep(&mut best[lane], Some(found), id, (t_min, t_max));
                             };
-                            for (best, found) in rows.hits[k..k + RAYS].iter_mut().zip(found) {
-                                keep(best, found, id, (t_min, t_max));
+                            let stored = &image.stored;
+                            match kz[0] {
+                                0 => triangle::intersect_rays::<0>(prepared, k, stored, found),
+                                1 => triangle::intersect_rays::<1>(prepared, k, stored, found),
+                                _ => triangle::intersect_rays::<2>(prepared, k, stored, found),
                             }
                             k += RAYS;
                             continue;
