@@ -4,12 +4,14 @@
 
 use glam::{DMat4, DQuat, DVec3};
 use shadowlab_hull::{Aabb, Perspective, ViewPose};
+use shadowlab_raster::NO_TRIANGLE;
 use shadowlab_scene::{BUILTIN_SCENES, builtin_scene};
 use shadowlab_shadow::sdsm::SdsmVariant;
 use shadowlab_shadow::{
-    Beyond, CullingSphere, Engine, Eye, Fade, FadeCurve, FocusPolicy, FrameOptions, LightSetup,
-    LightSource, Lookup, Partition, PlanInput, PlanOptions, PresetChoices, Selection,
-    SelectionRule, ShadowMapping, Stabilisation, Technique, render_frame, served,
+    Beyond, Bias, CullingSphere, Engine, Eye, Fade, FadeCurve, Filter, FocusPolicy, FrameOptions,
+    LightMaps, LightSetup, LightSource, Lookup, MapOptions, MapSource, Partition, PartitionMap,
+    PlanInput, PlanOptions, PresetChoices, Selection, SelectionRule, ShadowMapping, Stabilisation,
+    Technique, eye_pass, plan_frame, render_frame, scene_eye, selection_of, served, shadows_of,
 };
 
 const RESOLUTION: u32 = 1024;
@@ -503,4 +505,101 @@ fn has_point_light(scene: &shadowlab_scene::Scene) -> bool {
         .lights
         .iter()
         .any(|light| matches!(light, shadowlab_scene::SceneLight::Point { .. }))
+}
+
+/// Claim: a frame's lit fractions — four neighbouring pixels looked up together wherever one map
+/// serves them all unblended — are each pixel's own to the bit: `served`, then `Served::combine`
+/// of each serving map's `Lookup::lit_fraction`, 1 where nothing is visible or nothing serves; for
+/// every preset's shipped cascades on the outdoor scene, with the nearest and the PCF lookup, each
+/// with its own selection and with a fade over the whole view, so that blend bands and fades change
+/// what pixels read.
+#[test]
+fn a_frames_lit_fractions_are_each_pixels_own() {
+    let mut scene = builtin_scene("outdoor").unwrap();
+    scene.camera.width = 160;
+    scene.camera.height = 96;
+    let view = scene_eye(&scene);
+    let (eye, nearest) = eye_pass(&scene).unwrap();
+    let whole_view = Fade {
+        start: 0.0,
+        end: 1e4,
+        curve: FadeCurve::SmoothstepDepth,
+    };
+    let (mut blended, mut faded, mut looked_up) = (0, 0, 0);
+    for engine in Engine::ALL {
+        let technique = Technique::Engine(engine, SHIPPED);
+        let options = FrameOptions {
+            plan: PlanOptions {
+                partitions: 4,
+                ..PlanOptions::new(technique)
+            },
+            resolution: 256,
+            format: shadowlab_raster::DepthFormat::F32,
+            lookup: Lookup::new(Bias::DEFAULT, Filter::Nearest),
+            snap_texels: 0,
+        };
+        let planned = plan_frame(&scene, &options, nearest, Some(&eye)).unwrap();
+        for (filter, fade) in [Filter::Nearest, Filter::Pcf { size: 3 }]
+            .into_iter()
+            .flat_map(|filter| [(filter, None), (filter, Some(whole_view))])
+        {
+            let lights = scene
+                .lights
+                .iter()
+                .zip(&planned)
+                .map(|(light, partitions)| {
+                    let mut selection = selection_of(technique, light);
+                    selection.fade = fade.or(selection.fade);
+                    let map = MapOptions {
+                        resolution: options.resolution,
+                        format: options.format,
+                        second_depth: false,
+                    };
+                    LightMaps {
+                        light: LightSource::from_scene(light),
+                        partitions: partitions
+                            .iter()
+                            .map(|partition| PartitionMap {
+                                partition: partition.clone(),
+                                source: MapSource::Render(map),
+                                lookup: Lookup::new(Bias::DEFAULT, filter),
+                            })
+                            .collect(),
+                        selection,
+                    }
+                })
+                .collect();
+            let shadows = shadows_of(&scene, &eye, lights, None).unwrap();
+            for (light, lit) in shadows.lights.iter().zip(&shadows.lit) {
+                for (pixel, &value) in lit.iter().enumerate() {
+                    let (point, normal) = (eye.position[pixel], eye.normal[pixel]);
+                    let serving = (eye.triangle[pixel] != NO_TRIANGLE)
+                        .then(|| served(&light.maps, |(p, _)| p, &light.selection, &view, point))
+                        .flatten();
+                    let expected = serving.map_or(1.0, |serving| {
+                        let lit = |k: usize| {
+                            light.lookups[k].lit_fraction(&light.maps[k].1, point, normal)
+                        };
+                        // Where the blend or the fade changes the value.
+                        if let Some((next, _)) = serving.blend {
+                            blended += usize::from(lit(serving.index) != lit(next));
+                        }
+                        faded += usize::from(serving.fade > 0.0 && lit(serving.index) < 1.0);
+                        looked_up += 1;
+                        serving.combine(lit)
+                    });
+                    assert_eq!(
+                        value.to_bits(),
+                        expected.to_bits(),
+                        "{engine:?}, {filter:?}, fade {fade:?}, pixel {pixel}: {value} against \
+                         {expected}"
+                    );
+                }
+            }
+        }
+    }
+    assert!(
+        blended > 50 && faded > 1000 && looked_up > 10_000,
+        "{blended} blended, {faded} faded, {looked_up} looked up"
+    );
 }
