@@ -459,8 +459,10 @@ pub struct AliasingStats {
 const STATS_CHUNK: usize = 1 << 14;
 /// Bits of the key by which one pass of the percentile's selection buckets the candidates.
 const SELECT_DIGIT_BITS: u32 = 11;
-/// Candidates few enough to be selected among directly, on one thread.
-const SELECT_DIRECT: usize = 1 << 12;
+/// Candidates few enough to be selected among directly, on one thread: each counting pass reads
+/// every key again, and `select_nth_unstable` of this many costs less than such a pass
+/// (docs/benchmarks.md, "Store-forwarding stalls": the footprint statistics at 2¹² and 2¹⁶).
+const SELECT_DIRECT: usize = 1 << 16;
 
 /// The maximum, 99th percentile (nearest rank: the `⌈0.99·n⌉`-th smallest of `n` values, no
 /// interpolation; values ordered by `f64::total_cmp`) and mean of `values`, NaNs left out (and not

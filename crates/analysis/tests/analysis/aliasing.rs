@@ -393,7 +393,7 @@ fn sorted_p99_and_max(values: &[f64]) -> (f64, f64) {
 fn the_selected_percentile_is_the_sorted_one() {
     let mut next = split_mix64(15);
     let mut sets: Vec<Vec<f64>> = Vec::new();
-    for n in [1, 99, 100, 101, 4096, 4097, 16_385, 70_001] {
+    for n in [1, 99, 100, 101, 4096, 4097, 16_385, 65_536, 65_537, 200_003] {
         // Spread: any finite double of either sign, by its bits.
         sets.push(
             (0..n)
