@@ -647,14 +647,20 @@ fn lit_rows_together(
     };
     for (block, values) in rows.chunks_mut(LANES).enumerate() {
         let first = first + block * LANES;
+        // Each pixel's map asked once, from one call site (so that the rule is inlined here),
+        // into an array read field by field (see `lit_block`).
+        let mut served = [None; LANES];
+        for (k, served) in served.iter_mut().take(values.len()).enumerate() {
+            *served = serving(first + k);
+        }
         if let Ok(values) = <&mut [f64; LANES]>::try_from(&mut *values)
-            && let Some(lit) = lit_block(shadow, lookups, image, first, serving)
+            && let Some(lit) = lit_block(shadow, lookups, image, first, &served)
         {
             *values = lit;
             continue;
         }
         for (k, value) in values.iter_mut().enumerate() {
-            let Some(serving) = serving(first + k) else {
+            let Some(serving) = &served[k] else {
                 continue;
             };
             let (position, normal) = (image.position[first + k], image.normal[first + k]);
@@ -665,33 +671,29 @@ fn lit_rows_together(
     }
 }
 
-/// The lit fractions of the [`LANES`] pixels from `first`, each served as `serving` says, looked
-/// up together (`Lookup::lit_fractions`: the same values as one by one) if all are visible and
-/// served by one map without a blend; `None` otherwise (the caller then asks `serving` again,
-/// pixel by pixel).
+/// The lit fractions of the [`LANES`] pixels from `first`, served as `served` says, looked up
+/// together (`Lookup::lit_fractions`: the same values as one by one) if all are visible and served
+/// by one map without a blend; `None` otherwise.
 ///
-/// Nothing here gathers the lanes' [`Served`] or points into an array of its own: such an array,
-/// written field by field and then moved whole, is read back by vector loads that wait for the
-/// scalar stores that wrote it (a store-forwarding stall; docs/benchmarks.md). The points are read
-/// where they lie, and each lane's fade is kept as it is found.
+/// `served` is only read field by field, and the points where they lie: an array of lanes built by
+/// `array::from_fn` and moved whole is read back by vector loads that wait for the scalar stores
+/// that wrote it (a store-forwarding stall; docs/benchmarks.md).
 fn lit_block(
     shadow: &LightShadow,
     lookups: &[Lookup],
     image: &EyeImage,
     first: usize,
-    serving: impl Fn(usize) -> Option<Served>,
+    served: &[Option<Served>; LANES],
 ) -> Option<[f64; LANES]> {
-    let mut index = None;
-    let mut fade = [0.0; LANES];
-    for (k, fade) in fade.iter_mut().enumerate() {
-        let served = serving(first + k)?;
-        if served.blend.is_some() || index.is_some_and(|index| index != served.index) {
-            return None;
-        }
-        index = Some(served.index);
-        *fade = served.fade;
+    let index = served[0].as_ref()?.index;
+    let one_map = |served: &Option<Served>| {
+        served
+            .as_ref()
+            .is_some_and(|served| served.index == index && served.blend.is_none())
+    };
+    if !served.iter().all(one_map) {
+        return None;
     }
-    let index = index?;
     let lanes = first..first + LANES;
     let lit = lookups[index].lit_fractions(
         &shadow.maps[index].1,
@@ -700,11 +702,8 @@ fn lit_block(
     )?;
     // `Served::combine` (no blend: the one map's value, faded) with the block's values.
     Some(std::array::from_fn(|k| {
-        let served = Served {
-            index,
-            blend: None,
-            fade: fade[k],
-        };
-        served.combine(|_| lit[k])
+        served[k]
+            .as_ref()
+            .map_or(lit[k], |served| served.combine(|_| lit[k]))
     }))
 }
