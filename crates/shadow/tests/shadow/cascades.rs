@@ -426,6 +426,21 @@ fn fades_rise_from_start_to_end() {
     assert_eq!(unity.amount(0.0, 10.0), 0.0);
 }
 
+/// A frame of four partitions by `technique`, 256² maps of f32 depths, the default bias and the
+/// nearest lookup, no texel snapping.
+fn four_cascades(technique: Technique) -> FrameOptions {
+    FrameOptions {
+        plan: PlanOptions {
+            partitions: 4,
+            ..PlanOptions::new(technique)
+        },
+        resolution: 256,
+        format: shadowlab_raster::DepthFormat::F32,
+        lookup: Lookup::new(Bias::DEFAULT, Filter::Nearest),
+        snap_texels: 0,
+    }
+}
+
 #[test]
 fn every_preset_and_sdsm_variant_renders_every_builtin_scene() {
     let techniques: Vec<Technique> = Engine::ALL
@@ -443,19 +458,7 @@ fn every_preset_and_sdsm_variant_renders_every_builtin_scene() {
         scene.camera.width = 96;
         scene.camera.height = 64;
         for &technique in &techniques {
-            let options = FrameOptions {
-                plan: PlanOptions {
-                    partitions: 4,
-                    ..PlanOptions::new(technique)
-                },
-                resolution: 256,
-                format: shadowlab_raster::DepthFormat::F32,
-                lookup: Lookup::new(
-                    shadowlab_shadow::Bias::DEFAULT,
-                    shadowlab_shadow::Filter::Nearest,
-                ),
-                snap_texels: 0,
-            };
+            let options = four_cascades(technique);
             let frame = render_frame(&scene, &options)
                 .unwrap_or_else(|e| panic!("{name} with {technique}: {e}"));
             for (light, lit) in frame.lights.iter().zip(&frame.lit) {
@@ -528,16 +531,7 @@ fn a_frames_lit_fractions_are_each_pixels_own() {
     let (mut blended, mut faded, mut looked_up) = (0, 0, 0);
     for engine in Engine::ALL {
         let technique = Technique::Engine(engine, SHIPPED);
-        let options = FrameOptions {
-            plan: PlanOptions {
-                partitions: 4,
-                ..PlanOptions::new(technique)
-            },
-            resolution: 256,
-            format: shadowlab_raster::DepthFormat::F32,
-            lookup: Lookup::new(Bias::DEFAULT, Filter::Nearest),
-            snap_texels: 0,
-        };
+        let options = four_cascades(technique);
         let planned = plan_frame(&scene, &options, nearest, Some(&eye)).unwrap();
         for (filter, fade) in [Filter::Nearest, Filter::Pcf { size: 3 }]
             .into_iter()
