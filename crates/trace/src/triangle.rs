@@ -292,15 +292,8 @@ pub(crate) fn intersect_rays<const KZ: usize>(
         if missed & (1 << k) != 0 {
             continue;
         }
-        // `clamp`'s check and clamp.
-        debug_assert!(
-            near[k] <= far[k],
-            "a watertight hit outside its padded box: {} > {}",
-            near[k],
-            far[k]
-        );
-        if near[k] <= far[k] {
-            hit(k, (t[k].max(near[k]).min(far[k]), bu[k], bv[k]));
+        if let Some(t) = clamp_into(t[k], near[k], far[k]) {
+            hit(k, (t, bu[k], bv[k]));
         }
     }
 }
@@ -343,14 +336,18 @@ pub(crate) fn intersect<const KZ: usize>(
 fn clamp(ray: &PreparedRay, triangle: &TriangleVertices, t: f64) -> Option<f64> {
     let (lo, hi) = bounds(triangle);
     let (near, far) = ray.slab(lo, hi, f64::NEG_INFINITY, f64::INFINITY);
+    clamp_into(t, near, far)
+}
+
+/// `t` clamped into the box's parameter interval `[near, far]`; `None` if it is empty, which
+/// never happens for a watertight hit (see [`intersect`]).
+#[inline(always)]
+fn clamp_into(t: f64, near: f64, far: f64) -> Option<f64> {
     debug_assert!(
         near <= far,
         "a watertight hit outside its padded box: {near} > {far}"
     );
-    if near > far {
-        return None;
-    }
-    Some(t.max(near).min(far))
+    (near <= far).then(|| t.max(near).min(far))
 }
 
 #[cfg(test)]
