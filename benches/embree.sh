@@ -3,7 +3,10 @@
 # meshes and the same rays (f32, written once by shadowlab's side), the same thread counts, closest
 # and any hit, shadowlab's exact f64 BVH (examples/ray_bench.rs) and Embree's f32 single rays and
 # 16-wide packets (benches/embree_bench.cpp), run interleaved (shadowlab, Embree, shadowlab, ...);
-# then a table of medians and ratios and the per-ray agreement of their answers.
+# then a table of medians and ratios and the per-ray agreement of their answers. The grid set's
+# closest hits are also timed through `Bvh::closest_hits_grid` (row `grid·rows`), the entry point the
+# logarithmic shadow map casts through: swept triangle by triangle on a mesh with at least 64 rays
+# per triangle (data/meshes/bunny-small.obj's 3 674 triangles; not the bunny's nor the dragon's).
 #
 # Usage: bash benches/embree.sh [MESH.obj ...]
 #   (default: data/meshes/bunny.obj, and data/meshes/dragon.obj if fetched: fetch-dragon.sh there)

@@ -8,9 +8,11 @@
 //!   them to `DIR` (formats below). Nothing is timed.
 //! * `ray_bench time DIR [--threads 1,2] [--runs R] [--warmup W] [--hits]` reads them back (f32
 //!   widened to f64, exactly), and per thread count, in a rayon pool of that size, times
-//!   `Bvh::new` and the batch queries `closest_hits` and `occluded_all` over each ray set: `W`
-//!   untimed runs, then `R` timed ones. It prints one JSON object (every timed run, in ms); with
-//!   `--hits` it writes the answers per ray for the agreement check.
+//!   `Bvh::new` and the batch queries `closest_hits` and `occluded_all` over each ray set (mode
+//!   `batch`), and the grid set's closest hits again through `closest_hits_grid` (mode `rows`: row
+//!   by row, as the logarithmic shadow map casts them, its answers checked against the batch's):
+//!   `W` untimed runs, then `R` timed ones. It prints one JSON object (every timed run, in ms);
+//!   with `--hits` it writes the answers per ray for the agreement check.
 //!
 //! # Ray sets
 //! Built from the mesh's bounds (centre `c`, radius `R` = half the diagonal) and the benchmark
@@ -49,7 +51,7 @@ use clap::{Parser, Subcommand};
 use glam::{DMat4, DVec3, DVec4, Vec3};
 use serde_json::json;
 use shadowlab_scene::benchmark::BenchmarkView;
-use shadowlab_trace::{Bvh, Ray};
+use shadowlab_trace::{Bvh, Hit, Ray};
 
 /// The ray sets, in the order they are written, read, timed and reported.
 const SETS: [&str; 3] = ["camera", "random", "grid"];
@@ -405,6 +407,11 @@ fn time(dir: &Path, threads: &[usize], runs: usize, warmup: usize, hits: bool) -
             let rays = set.rays.len();
             records.push(json!({"what": "closest", "set": set.name, "mode": "batch",
                 "threads": n, "rays": rays, "ms": ms}));
+            if set.name == "grid" {
+                let ms = time_grid_rows(&pool, &bvh, set, (warmup, runs), &closest)?;
+                records.push(json!({"what": "closest", "set": set.name, "mode": "rows",
+                    "threads": n, "rays": rays, "ms": ms}));
+            }
             let (ms, occluded) = timed(warmup, runs, || {
                 pool.install(|| bvh.occluded_all(&set.rays, 0.0, set.t_max))
             });
@@ -446,6 +453,55 @@ fn time(dir: &Path, threads: &[usize], runs: usize, warmup: usize, hits: bool) -
     serde_json::to_writer(&mut stdout, &report)?;
     writeln!(stdout)?;
     Ok(())
+}
+
+/// The `grid` set's closest hits timed through [`Bvh::closest_hits_grid`], as the logarithmic
+/// shadow map casts its texel rays: row by row (the rays put in row order once, untimed; each row
+/// copied in by the row callback, the answers copied out), swept triangle by triangle where the
+/// grid has at least `RAYS_PER_TRIANGLE` (64) rays per triangle, through the tree otherwise. Its
+/// answers must be `batch`'s, bit for bit (an error otherwise).
+fn time_grid_rows(
+    pool: &rayon::ThreadPool,
+    bvh: &Bvh,
+    set: &RaySet,
+    (warmup, runs): (usize, usize),
+    batch: &[Option<Hit>],
+) -> Result<Vec<f64>> {
+    let side = LIGHT as usize;
+    ensure!(
+        set.rays.len() == side * side,
+        "the grid set holds {side}² rays"
+    );
+    // Pixel (x, y)'s place in the tile order of `pixel_rays`.
+    let tile = TILE as usize;
+    let tiled = |x: usize, y: usize| {
+        ((y / tile) * (side / tile) + x / tile) * tile * tile + (y % tile) * tile + x % tile
+    };
+    let in_rows: Vec<Ray> = (0..side * side)
+        .map(|k| set.rays[tiled(k % side, k / side)])
+        .collect();
+    let mut answers = vec![None; side * side];
+    let (ms, result) = timed(warmup, runs, || {
+        pool.install(|| {
+            bvh.closest_hits_grid(
+                side,
+                |j, rays| rays.copy_from_slice(&in_rows[j * side..(j + 1) * side]),
+                0.0,
+                set.t_max,
+                &mut answers,
+                |_, hits, out| out.copy_from_slice(hits),
+            )
+        })
+    });
+    result?;
+    let differing = (0..side * side)
+        .filter(|&k| answers[k] != batch[tiled(k % side, k / side)])
+        .count();
+    ensure!(
+        differing == 0,
+        "closest_hits_grid answered {differing} rays differently from closest_hits"
+    );
+    Ok(ms)
 }
 
 fn write_hits(dir: &Path, set: &str, closest: &[i32], occluded: &[bool]) -> Result<()> {
