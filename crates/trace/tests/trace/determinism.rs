@@ -7,7 +7,7 @@ use shadowlab_trace::{Bvh, Ray};
 use crate::support::{Mesh, Rng, soup, uv_sphere, with_threads};
 
 /// 9 000 soup triangles around a 9 920-triangle sphere: large enough that the build splits its
-/// upper nodes in parallel (from 4 096 triangles on).
+/// upper nodes in parallel (from 1 024 triangles on).
 fn scene() -> Mesh {
     let mut rng = Rng::new(0x7ACE_0E01);
     let mut mesh = soup(9000, &mut rng).map(|p| p * 3.0);
