@@ -6,8 +6,8 @@
 //! Meshes: the small bunny (`data/meshes/bunny-small.obj`, 3 674 triangles: the one whose 2048²
 //! grid is swept, at 1 141 rays per triangle), the Stanford bunny (`data/meshes/bunny.obj`, 69 666
 //! triangles) and, when present, the dragon (`data/meshes/dragon.obj`, 871 414 triangles; made by
-//! `data/meshes/fetch-dragon.sh`, reported as absent otherwise). They are read by the small OBJ reader below (`v` and `f` only),
-//! so the benchmark depends on nothing but this crate.
+//! `data/meshes/fetch-dragon.sh`, reported as absent otherwise). They are read by the small OBJ
+//! reader below (`v` and `f` only), so the benchmark depends on nothing but this crate.
 //!
 //! Rays (fixed by a SplitMix64 seed):
 //! - *coherent*: a 256 × 256 orthographic grid over the mesh's bounding sphere, all parallel to

@@ -79,8 +79,9 @@ const SAH_DEPTH_LIMIT: usize = 64;
 pub(crate) const MAX_DEPTH: usize = SAH_DEPTH_LIMIT + 32;
 /// 4-wide nodes (and binary splits) of at least this many triangles build their children in
 /// parallel; the tree is the sequential build's whatever the value. Measured (docs/benchmarks.md,
-/// "The BVH build's parallel threshold"): 1 024 builds a mesh of a few thousand triangles a third
-/// faster on two threads than 4 096 did (which built it on one), for 3 % more on the bunny.
+/// "The BVH build's parallel threshold"): against 4 096, which built a mesh of a few thousand
+/// triangles on one thread, 1 024 builds it faster on two — a third in criterion's back-to-back
+/// loop, less and noisily from a pool whose second worker sleeps — for 3 % more on the bunny.
 const PARALLEL_THRESHOLD: usize = 1024;
 /// Nodes of at least this many triangles are binned in parallel chunks.
 const PARALLEL_BINNING: usize = 1 << 15;
