@@ -73,6 +73,7 @@ use shadowlab_shadow::paraboloid::ParaboloidMap;
 use shadowlab_shadow::{LightSetup, ShadowMapping};
 
 use crate::exact_sum::ExactSum;
+use crate::hypot::hypot;
 use block::footprint_block;
 
 mod block;
@@ -290,7 +291,7 @@ pub fn footprint(
 fn footprint_of(local: &Local) -> Option<Footprint> {
     let j = local.jacobian;
     let (a, b, c, d) = (j.x_axis.x, j.y_axis.x, j.x_axis.y, j.y_axis.y);
-    let sigma_max = 0.5 * ((a + d).hypot(c - b) + (a - d).hypot(b + c));
+    let sigma_max = 0.5 * (hypot(a + d, c - b) + hypot(a - d, b + c));
     let total = sigma_max / j.determinant().abs();
     if local.cos_beta < GRAZING_COS {
         return None;

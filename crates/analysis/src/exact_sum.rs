@@ -203,8 +203,8 @@ impl ExactSum {
 }
 
 /// `2^exponent` for `−1074 ≤ exponent ≤ 1023`, built from its bits.
-fn power_of_two(exponent: i32) -> f64 {
-    debug_assert!((LOWEST_EXPONENT..=1023).contains(&exponent));
+pub(crate) const fn power_of_two(exponent: i32) -> f64 {
+    debug_assert!(LOWEST_EXPONENT <= exponent && exponent <= 1023);
     #[expect(clippy::cast_sign_loss, reason = "checked non-negative")]
     let bits = if exponent >= -1022 {
         ((exponent + 1023) as u64) << 52

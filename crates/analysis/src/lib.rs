@@ -55,6 +55,7 @@ pub mod evaluate;
 mod exact_sum;
 pub mod export;
 mod html;
+mod hypot;
 pub mod images;
 mod labels;
 pub mod leaks;

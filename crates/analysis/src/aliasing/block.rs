@@ -9,7 +9,7 @@
 //! four chains' latencies overlap.
 //!
 //! Each lane performs exactly the operations of [`local`](super::local) on its pixel, in the same
-//! order (the two `hypot`s are the C library's, lane by lane) — glam's `DVec3::dot` is
+//! order (the two `hypot`s correctly rounded, four lanes at once) — glam's `DVec3::dot` is
 //! `(x·x′ + y·y′) + z·z′`, `DMat4 · DVec4` sums its columns from `x` to `w`, the homogeneous `w`
 //! of a direction multiplies the last column by 0 and adds it — and neither Rust nor `wide`
 //! contracts a product and a sum into a fused multiply-add, so every lane gives the same bits as
@@ -26,6 +26,7 @@ use shadowlab_shadow::{logarithmic, paraboloid};
 use wide::f64x4;
 
 use super::{Footprint, GRAZING_COS, Viewer};
+use crate::hypot::hypot_lanes;
 
 /// A [`LaneMapping`] at four points: `At` of the one-pixel function, lane by lane.
 enum LanesAt<'a> {
@@ -127,11 +128,7 @@ pub(super) fn footprint_block(
     let cos_beta = ray.dot(n).abs() / ray.length();
     // `footprint_of`: σ_max of J = [[a, b], [c, d]] over |det J|, and the projection factor.
     let (a, b, c, d) = (d1x, d2x, d1y, d2y);
-    let hypot = |x: f64x4, y: f64x4| {
-        let (x, y) = (x.to_array(), y.to_array());
-        f64x4::new(std::array::from_fn(|k| x[k].hypot(y[k])))
-    };
-    let sigma_max = f64x4::splat(0.5) * (hypot(a + d, c - b) + hypot(a - d, b + c));
+    let sigma_max = f64x4::splat(0.5) * (hypot_lanes(a + d, c - b) + hypot_lanes(a - d, b + c));
     let total = sigma_max / (a * d - c * b).abs();
     let projection = cos_alpha / cos_beta;
     let perspective = total / projection;
