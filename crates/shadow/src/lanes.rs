@@ -32,6 +32,34 @@ impl Vectors {
         }
     }
 
+    /// The four vectors, `[v₀, v₁, v₂, v₃]`: the inverse of [`Vectors::of`].
+    #[must_use]
+    pub fn vectors(self) -> [DVec3; LANES] {
+        let [x, y, z] = [self.x, self.y, self.z].map(f64x4::to_array);
+        std::array::from_fn(|k| DVec3::new(x[k], y[k], z[k]))
+    }
+
+    /// Lane by lane and coordinate by coordinate, the lesser: `DVec3::min` of each lane's vectors
+    /// (a NaN coordinate of `other` is passed over, as `f64::min` passes it over).
+    #[must_use]
+    pub fn min(self, other: Self) -> Self {
+        Self {
+            x: self.x.min(other.x),
+            y: self.y.min(other.y),
+            z: self.z.min(other.z),
+        }
+    }
+
+    /// Lane by lane and coordinate by coordinate, the greater: `DVec3::max` of each lane's vectors.
+    #[must_use]
+    pub fn max(self, other: Self) -> Self {
+        Self {
+            x: self.x.max(other.x),
+            y: self.y.max(other.y),
+            z: self.z.max(other.z),
+        }
+    }
+
     /// `v` in every lane.
     #[must_use]
     pub fn splat(v: DVec3) -> Self {

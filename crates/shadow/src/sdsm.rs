@@ -88,11 +88,12 @@
 //!   set in its UI. Sorted depths and sums in a fixed order make it deterministic and independent
 //!   of the samples' order.
 
+use std::borrow::Cow;
+
 use glam::{DMat4, DVec3, DVec4};
 use rayon::prelude::*;
 use shadowlab_hull::HullError;
 use shadowlab_params::{DepthRange, ParamError};
-use wide::f64x4;
 
 use crate::error::ShadowError;
 use crate::frame::LightFrame;
@@ -289,8 +290,13 @@ pub fn plan(
     let (e, v) = (input.eye.pose.eye(), input.eye.pose.forward());
     // Every pass over the samples is parallel, and keeps the samples' order (`gather`). Each
     // pass reads the positions alone, and a light-frame position is computed where it is used:
-    // cheaper than reading it back.
-    let samples: Vec<DVec3> = gather(samples, |_, p| input.light.reaches(*p));
+    // cheaper than reading it back. Samples the light reaches are read in place when that is all
+    // of them (a directional light's), not copied.
+    let samples: Cow<'_, [DVec3]> = if samples.par_iter().all(|p| input.light.reaches(*p)) {
+        Cow::Borrowed(samples)
+    } else {
+        Cow::Owned(gather(samples, |_, p| input.light.reaches(*p)))
+    };
     if samples
         .par_iter()
         .any(|&p| light_point(&to_light, p).is_none())
@@ -301,11 +307,15 @@ pub fn plan(
     let boundaries = variant.boundaries(&depths, count)?;
     let nears = merged_nears(&boundaries, &depths);
     // Each partition's samples in the samples' order: all of them for one partition.
-    let served: Vec<Vec<DVec3>> = if nears.len() == 1 {
+    let served: Vec<Cow<'_, [DVec3]>> = if nears.len() == 1 {
         vec![samples]
     } else {
         (0..nears.len())
-            .map(|k| gather(&samples, |i, _| serving_index(&nears, depths[i]) == k))
+            .map(|k| {
+                Cow::Owned(gather(&samples, |i, _| {
+                    serving_index(&nears, depths[i]) == k
+                }))
+            })
             .collect()
     };
     let reach = caster_reach(input, &frame)?;
@@ -590,40 +600,39 @@ fn fit(to_light: &DMat4, samples: &[DVec3], reach: f64) -> Result<Window, Shadow
 /// fixed chunks of [`FIT_CHUNK`] whose bounds are combined in chunk order, so the result is the
 /// same on any thread count; [`ShadowError::LightInsideFocusBody`] where `point` has none. The
 /// points are mapped four at a time by `points` (each lane `point`'s bits, `None` where the lane's
-/// flag is set: the `lanes` module), the last few of a chunk by `point`, and taken into the bounds
-/// one by one in the samples' order, as `point`'s alone would be.
+/// flag is set: the `lanes` module), the last few of a chunk by `point`; the four lanes keep bounds
+/// of their own, combined at the chunk's end. A NaN coordinate is passed over, as `f64::min` passes
+/// it over, and a zero bound is +0 whatever zeros were taken (`f64::min(−0, +0)` may be either), so
+/// the bounds do not depend on the order the points are taken in.
 fn bounds(
     samples: &[DVec3],
     point: impl Fn(&DVec3) -> Option<DVec3> + Sync,
     points: impl Fn(&[DVec3; LANES]) -> (Vectors, [bool; LANES]) + Sync,
 ) -> Result<(DVec3, DVec3), ShadowError> {
     let empty = (DVec3::INFINITY, DVec3::NEG_INFINITY);
-    let take = |(lo, hi): (DVec3, DVec3), p: DVec3| (lo.min(p), hi.max(p));
+    let take = |(lo, hi): (DVec3, DVec3), (low, high): (DVec3, DVec3)| (lo.min(low), hi.max(high));
     let chunks: Vec<Option<(DVec3, DVec3)>> = samples
         .par_chunks(FIT_CHUNK)
         .map(|chunk| {
             let (fours, rest) = chunk.as_chunks::<LANES>();
-            let bounds = fours.iter().try_fold(empty, |bounds, four| {
+            let lanes_empty = (Vectors::splat(empty.0), Vectors::splat(empty.1));
+            let (lo, hi) = fours.iter().try_fold(lanes_empty, |(lo, hi), four| {
                 let (p, undefined) = points(four);
-                if undefined.contains(&true) {
-                    return None;
-                }
-                let [x, y, z] = [p.x, p.y, p.z].map(f64x4::to_array);
-                Some((0..LANES).fold(bounds, |bounds, k| {
-                    take(bounds, DVec3::new(x[k], y[k], z[k]))
-                }))
+                (!undefined.contains(&true)).then(|| (lo.min(p), hi.max(p)))
             })?;
-            rest.iter()
-                .try_fold(bounds, |bounds, sample| Some(take(bounds, point(sample)?)))
+            let (lo, hi) = (lo.vectors(), hi.vectors());
+            let bounds = (0..LANES).fold(empty, |bounds, k| take(bounds, (lo[k], hi[k])));
+            rest.iter().try_fold(bounds, |bounds, sample| {
+                point(sample).map(|p| take(bounds, (p, p)))
+            })
         })
         .collect();
-    chunks
+    let (lo, hi) = chunks
         .into_iter()
-        .try_fold(empty, |(lo, hi), chunk| {
-            let (low, high) = chunk?;
-            Some((lo.min(low), hi.max(high)))
-        })
-        .ok_or(ShadowError::LightInsideFocusBody)
+        .try_fold(empty, |bounds, chunk| Some(take(bounds, chunk?)))
+        .ok_or(ShadowError::LightInsideFocusBody)?;
+    // −0 + +0 = +0; every other value stays as it is.
+    Ok((lo + DVec3::ZERO, hi + DVec3::ZERO))
 }
 
 #[cfg(test)]
@@ -633,6 +642,40 @@ mod tests {
 
     use super::{FIT_CHUNK, bounds, light_point, light_points};
     use crate::error::ShadowError;
+
+    /// A zero bound is +0 whichever zeros were taken, in whatever order and lanes: the bounds are
+    /// a function of the points' values alone. (A light-space −0 needs every term of its sum to be
+    /// −0: here a translation of −0 and negative other coordinates.)
+    #[test]
+    fn a_zero_bound_is_positive_zero_in_any_order() {
+        let to_light = DMat4::from_cols(
+            DVec4::X,
+            DVec4::Y,
+            DVec4::Z,
+            DVec4::new(-0.0, -0.0, -0.0, 1.0),
+        );
+        let point = |sample: &DVec3| light_point(&to_light, *sample);
+        let at = |x: f64| DVec3::new(x, -1.0, -1.0);
+        assert_eq!(
+            point(&at(-0.0)).map(|p| p.x.to_bits()),
+            Some((-0.0f64).to_bits())
+        );
+        let zeros = [-0.0, 0.0, -0.0, -0.0, 0.0, -0.0, 0.0];
+        for count in [1, 2, 4, 5, 7] {
+            for start in 0..zeros.len() {
+                let samples: Vec<DVec3> = (0..count)
+                    .map(|k| at(zeros[(start + k) % zeros.len()]))
+                    .collect();
+                let (lo, hi) =
+                    bounds(&samples, point, |four| light_points(&to_light, four)).expect("bounds");
+                assert_eq!(
+                    [lo.x, hi.x].map(f64::to_bits),
+                    [0, 0],
+                    "{count} from {start}"
+                );
+            }
+        }
+    }
 
     /// The bounds of points mapped four at a time are those of the points mapped one by one and
     /// taken in order, to the bit — through an affine light space (`w` exactly 1) and a
