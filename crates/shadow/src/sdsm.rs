@@ -297,9 +297,12 @@ pub fn plan(
     } else {
         Cow::Owned(gather(samples, |_, p| input.light.reaches(*p)))
     };
-    if samples
-        .par_iter()
-        .any(|&p| light_point(&to_light, p).is_none())
+    // A directional light's frame is affine (w = 1 for every finite sample): nothing to check.
+    let directional = matches!(input.light, LightSource::Directional { .. });
+    if !directional
+        && samples
+            .par_iter()
+            .any(|&p| light_point(&to_light, p).is_none())
     {
         return Err(ShadowError::LightInsideFocusBody);
     }
