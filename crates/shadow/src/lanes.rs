@@ -40,7 +40,7 @@ impl Vectors {
     }
 
     /// Lane by lane and coordinate by coordinate, the lesser: `DVec3::min` of each lane's vectors
-    /// (a NaN coordinate of `other` is passed over, as `f64::min` passes it over).
+    /// (a NaN coordinate of either is passed over, as `f64::min` passes it over).
     #[must_use]
     pub fn min(self, other: Self) -> Self {
         Self {
@@ -50,7 +50,8 @@ impl Vectors {
         }
     }
 
-    /// Lane by lane and coordinate by coordinate, the greater: `DVec3::max` of each lane's vectors.
+    /// Lane by lane and coordinate by coordinate, the greater: `DVec3::max` of each lane's vectors
+    /// (a NaN coordinate of either is passed over).
     #[must_use]
     pub fn max(self, other: Self) -> Self {
         Self {

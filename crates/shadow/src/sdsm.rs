@@ -291,14 +291,15 @@ pub fn plan(
     // Every pass over the samples is parallel, and keeps the samples' order (`gather`). Each
     // pass reads the positions alone, and a light-frame position is computed where it is used:
     // cheaper than reading it back. Samples the light reaches are read in place when that is all
-    // of them (a directional light's), not copied.
-    let samples: Cow<'_, [DVec3]> = if samples.par_iter().all(|p| input.light.reaches(*p)) {
+    // of them (always a directional light's), not copied.
+    let directional = matches!(input.light, LightSource::Directional { .. });
+    let reached = |p: &DVec3| input.light.reaches(*p);
+    let samples: Cow<'_, [DVec3]> = if directional || samples.par_iter().all(reached) {
         Cow::Borrowed(samples)
     } else {
-        Cow::Owned(gather(samples, |_, p| input.light.reaches(*p)))
+        Cow::Owned(gather(samples, |_, p| reached(p)))
     };
     // A directional light's frame is affine (w = 1 for every finite sample): nothing to check.
-    let directional = matches!(input.light, LightSource::Directional { .. });
     if !directional
         && samples
             .par_iter()
