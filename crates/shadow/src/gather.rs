@@ -5,7 +5,7 @@
 //! points, tens of megabytes, while the other workers wait). [`gather`] instead counts what each
 //! fixed chunk keeps, then lets each chunk copy its items to their place (the counts' prefix
 //! sums), both in parallel. The result is the sequential filter's vector, element for element, on
-//! any thread count.
+//! any thread count. [`gather_groups`] does the same for every group of a partition at once.
 
 use rayon::prelude::*;
 
@@ -59,6 +59,60 @@ pub fn gather_map<T: Sync, U: Copy + Send + Sync>(
     out
 }
 
+/// The items of `items` grouped by `group_of(index, item)`, a group in `0..groups`: group 0's items
+/// in their order, then group 1's, and so on, and each group's length — [`gather`] of every group
+/// at once, in two passes over the items (count, then copy) into one vector.
+///
+/// # Panics
+/// If `group_of` gives a group outside `0..groups`.
+pub fn gather_groups<T: Copy + Send + Sync>(
+    items: &[T],
+    groups: usize,
+    group_of: impl Fn(usize, &T) -> usize + Sync,
+) -> (Vec<T>, Vec<usize>) {
+    let Some(&first) = items.first() else {
+        return (Vec::new(), vec![0; groups]);
+    };
+    let group = |index: usize, item: &T| Some(group_of(index, item));
+    let counts: Vec<Vec<usize>> = items
+        .par_chunks(GATHER_CHUNK)
+        .enumerate()
+        .map(|(chunk, part)| {
+            let mut counts = vec![0; groups];
+            picked(chunk, part, &group).for_each(|group| counts[group] += 1);
+            counts
+        })
+        .collect();
+    let lengths: Vec<usize> = (0..groups)
+        .map(|group| counts.iter().map(|counts| counts[group]).sum())
+        .collect();
+    // Filled by the workers (docs/CONVENTIONS.md, "Large buffers"), then overwritten.
+    let mut out: Vec<T> = rayon::iter::repeat_n(first, items.len()).collect();
+    // Each chunk's place in each group: groups one after another, chunks in order within each.
+    let mut places: Vec<Vec<&mut [T]>> =
+        counts.iter().map(|_| Vec::with_capacity(groups)).collect();
+    let mut rest = out.as_mut_slice();
+    for group in 0..groups {
+        for (places, counts) in places.iter_mut().zip(&counts) {
+            let (place, tail) = std::mem::take(&mut rest).split_at_mut(counts[group]);
+            places.push(place);
+            rest = tail;
+        }
+    }
+    items
+        .par_chunks(GATHER_CHUNK)
+        .enumerate()
+        .zip(places)
+        .for_each(|((chunk, part), mut places)| {
+            let mut written = vec![0; groups];
+            for (item, group) in part.iter().zip(picked(chunk, part, &group)) {
+                places[group][written[group]] = *item;
+                written[group] += 1;
+            }
+        });
+    (out, lengths)
+}
+
 /// What `pick` makes of the items of chunk number `chunk`, `part`, that it picks (by index in
 /// the whole slice).
 fn picked<'a, T, U>(
@@ -74,7 +128,7 @@ fn picked<'a, T, U>(
 
 #[cfg(test)]
 mod tests {
-    use super::{GATHER_CHUNK, gather, gather_map};
+    use super::{GATHER_CHUNK, gather, gather_groups, gather_map};
 
     /// A filter by index and value.
     type Keep<'a> = &'a (dyn Fn(usize, &u64) -> bool + Sync);
@@ -102,6 +156,42 @@ mod tests {
                 let indices: Vec<usize> = (0..len).filter(|&i| keep(i, &items[i])).collect();
                 let picked = gather_map(&items, 0, |i, v| keep(i, v).then_some(i));
                 assert_eq!(picked, indices, "{len} items' indices");
+            }
+        }
+    }
+
+    /// Every group is the sequential filter of its items, the groups follow one another in order,
+    /// and the lengths count them: sizes around the chunk size, one group to five, some empty.
+    #[test]
+    fn gather_groups_is_each_groups_sequential_filter() {
+        for len in [0, 1, GATHER_CHUNK - 1, GATHER_CHUNK, 3 * GATHER_CHUNK + 17] {
+            let items: Vec<u64> = (0..len as u64)
+                .map(|i| i.wrapping_mul(0x9E37_79B9))
+                .collect();
+            for groups in 1..=5usize {
+                // Group 0 left empty where there are several; the rest by value and index.
+                let group_of = |i: usize, v: &u64| {
+                    if groups == 1 {
+                        0
+                    } else {
+                        1 + (usize::try_from(*v % 7).expect("small") + i / GATHER_CHUNK)
+                            % (groups - 1)
+                    }
+                };
+                let (grouped, lengths) = gather_groups(&items, groups, group_of);
+                assert_eq!(lengths.len(), groups);
+                let mut expected = Vec::new();
+                for (group, &length) in lengths.iter().enumerate() {
+                    let members: Vec<u64> = items
+                        .iter()
+                        .enumerate()
+                        .filter(|&(i, v)| group_of(i, v) == group)
+                        .map(|(_, v)| *v)
+                        .collect();
+                    assert_eq!(length, members.len(), "{len} items, group {group}");
+                    expected.extend(members);
+                }
+                assert_eq!(grouped, expected, "{len} items in {groups} groups");
             }
         }
     }

@@ -97,7 +97,7 @@ use shadowlab_params::{DepthRange, ParamError};
 
 use crate::error::ShadowError;
 use crate::frame::LightFrame;
-use crate::gather::gather;
+use crate::gather::{gather, gather_groups};
 use crate::homogeneous::point_of;
 use crate::input::{LightSource, PlanInput};
 use crate::lanes::{LANES, Vectors};
@@ -310,15 +310,23 @@ pub fn plan(
     let depths: Vec<f64> = samples.par_iter().map(|&p| (p - e).dot(v)).collect();
     let boundaries = variant.boundaries(&depths, count)?;
     let nears = merged_nears(&boundaries, &depths);
-    // Each partition's samples in the samples' order: all of them for one partition.
-    let served: Vec<Cow<'_, [DVec3]>> = if nears.len() == 1 {
-        vec![samples]
+    // Each partition's samples in the samples' order: all of them for one partition; for several,
+    // grouped by partition into one vector, which the partitions' slices borrow.
+    let grouped;
+    let served: Vec<&[DVec3]> = if nears.len() == 1 {
+        vec![&samples]
     } else {
-        (0..nears.len())
-            .map(|k| {
-                Cow::Owned(gather(&samples, |i, _| {
-                    serving_index(&nears, depths[i]) == k
-                }))
+        let lengths;
+        (grouped, lengths) = gather_groups(&samples, nears.len(), |i, _| {
+            serving_index(&nears, depths[i])
+        });
+        let mut rest = grouped.as_slice();
+        lengths
+            .iter()
+            .map(|&length| {
+                let (served, tail) = rest.split_at(length);
+                rest = tail;
+                served
             })
             .collect()
     };
