@@ -40,13 +40,7 @@ pub fn gather_map<T: Sync, U: Copy + Send + Sync>(
         .collect();
     // Filled by the workers (docs/CONVENTIONS.md, "Large buffers"), then overwritten.
     let mut out: Vec<U> = rayon::iter::repeat_n(fill, counts.iter().sum()).collect();
-    let mut places = Vec::with_capacity(counts.len());
-    let mut rest = out.as_mut_slice();
-    for &count in &counts {
-        let (place, tail) = std::mem::take(&mut rest).split_at_mut(count);
-        places.push(place);
-        rest = tail;
-    }
+    let places = pieces(&mut out, counts.iter().copied());
     items
         .par_chunks(GATHER_CHUNK)
         .enumerate()
@@ -89,15 +83,11 @@ pub fn gather_groups<T: Copy + Send + Sync>(
     // Filled by the workers (docs/CONVENTIONS.md, "Large buffers"), then overwritten.
     let mut out: Vec<T> = rayon::iter::repeat_n(first, items.len()).collect();
     // Each chunk's place in each group: groups one after another, chunks in order within each.
-    let mut places: Vec<Vec<&mut [T]>> =
-        counts.iter().map(|_| Vec::with_capacity(groups)).collect();
-    let mut rest = out.as_mut_slice();
-    for group in 0..groups {
-        for (places, counts) in places.iter_mut().zip(&counts) {
-            let (place, tail) = std::mem::take(&mut rest).split_at_mut(counts[group]);
-            places.push(place);
-            rest = tail;
-        }
+    let chunks = counts.len();
+    let group_major = (0..groups).flat_map(|group| counts.iter().map(move |counts| counts[group]));
+    let mut places: Vec<Vec<&mut [T]>> = (0..chunks).map(|_| Vec::with_capacity(groups)).collect();
+    for (k, place) in pieces(&mut out, group_major).into_iter().enumerate() {
+        places[k % chunks].push(place);
     }
     items
         .par_chunks(GATHER_CHUNK)
@@ -111,6 +101,18 @@ pub fn gather_groups<T: Copy + Send + Sync>(
             }
         });
     (out, lengths)
+}
+
+/// `slice` cut into consecutive pieces of the given `lengths` (which sum to at most its length).
+fn pieces<T>(mut slice: &mut [T], lengths: impl IntoIterator<Item = usize>) -> Vec<&mut [T]> {
+    lengths
+        .into_iter()
+        .map(|length| {
+            let (piece, tail) = std::mem::take(&mut slice).split_at_mut(length);
+            slice = tail;
+            piece
+        })
+        .collect()
 }
 
 /// What `pick` makes of the items of chunk number `chunk`, `part`, that it picks (by index in
@@ -133,14 +135,22 @@ mod tests {
     /// A filter by index and value.
     type Keep<'a> = &'a (dyn Fn(usize, &u64) -> bool + Sync);
 
+    /// Sizes around the chunk size.
+    const LENGTHS: [usize; 5] = [0, 1, GATHER_CHUNK - 1, GATHER_CHUNK, 3 * GATHER_CHUNK + 17];
+
+    /// `len` scrambled values.
+    fn items(len: usize) -> Vec<u64> {
+        (0..len as u64)
+            .map(|i| i.wrapping_mul(0x9E37_79B9))
+            .collect()
+    }
+
     /// The sequential filter's vector, for sizes around the chunk size and filters that keep
     /// nothing, everything, or an uneven share of each chunk.
     #[test]
     fn gather_is_the_sequential_filter() {
-        for len in [0, 1, GATHER_CHUNK - 1, GATHER_CHUNK, 3 * GATHER_CHUNK + 17] {
-            let items: Vec<u64> = (0..len as u64)
-                .map(|i| i.wrapping_mul(0x9E37_79B9))
-                .collect();
+        for len in LENGTHS {
+            let items = items(len);
             let filters: [Keep<'_>; 4] =
                 [&|_, _| false, &|_, _| true, &|_, v| v % 3 == 0, &|i, _| {
                     i < GATHER_CHUNK / 2 || i % 7 == 1
@@ -164,10 +174,8 @@ mod tests {
     /// and the lengths count them: sizes around the chunk size, one group to five, some empty.
     #[test]
     fn gather_groups_is_each_groups_sequential_filter() {
-        for len in [0, 1, GATHER_CHUNK - 1, GATHER_CHUNK, 3 * GATHER_CHUNK + 17] {
-            let items: Vec<u64> = (0..len as u64)
-                .map(|i| i.wrapping_mul(0x9E37_79B9))
-                .collect();
+        for len in LENGTHS {
+            let items = items(len);
             for groups in 1..=5usize {
                 // Group 0 left empty where there are several; the rest by value and index.
                 let group_of = |i: usize, v: &u64| {
