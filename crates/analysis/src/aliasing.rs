@@ -464,6 +464,9 @@ const SELECT_DIGIT_BITS: u32 = 11;
 /// every key again, and `select_nth_unstable` of this many costs less than such a pass
 /// (docs/benchmarks.md, "Store-forwarding stalls": the footprint statistics at 2¹² and 2¹⁶).
 const SELECT_DIRECT: usize = 1 << 16;
+/// Counts per bucket in one counting pass of the selection, taken by its keys in turn (at most
+/// [`STATS_CHUNK`] keys a chunk, so each fits in a `u32`).
+const TALLIES: usize = 4;
 
 /// The maximum, 99th percentile (nearest rank: the `⌈0.99·n⌉`-th smallest of `n` values, no
 /// interpolation; values ordered by `f64::total_cmp`) and mean of `values`, NaNs left out (and not
@@ -498,10 +501,10 @@ pub fn stats_of<T: Sync>(items: &[T], value: impl Fn(&T) -> Option<f64> + Sync) 
 
 /// [`stats`] of each of the `N` values `values(item)` gives over `items` (`None` and NaN left
 /// out), in parallel and in place, the items read once for all `N`: each chunk of `STATS_CHUNK`
-/// items keys each value (integers that order as `f64::total_cmp` orders the values) and takes
-/// their maximum and exact sum; each percentile is then selected among the chunks' keys by a radix
-/// selection whose bucket counts are taken in parallel, without gathering them into one list — no
-/// pass over all values runs on one thread.
+/// items lists each value and takes their maximum (by their keys, integers that order as
+/// `f64::total_cmp` orders the values) and exact sum; each percentile is then selected among the
+/// chunks' values by a radix selection of their keys whose bucket counts are taken in parallel,
+/// without gathering them into one list — no pass over all values runs on one thread.
 #[must_use]
 pub fn stats_of_each<T: Sync, const N: usize>(
     items: &[T],
@@ -510,20 +513,21 @@ pub fn stats_of_each<T: Sync, const N: usize>(
     let chunks: Vec<[ChunkStats; N]> = items
         .par_chunks(STATS_CHUNK)
         .map(|chunk| {
-            // Grown as needed: sized for the whole chunk, they would hold room for every item,
-            // where a frame's footprints leave out about half its pixels (nothing visible).
-            let mut keys: [Vec<u64>; N] = std::array::from_fn(|_| Vec::new());
+            // Room for every item: most have every value (a frame's footprints are held for its
+            // visible pixels alone), and growing the vectors copied them again and again.
+            let mut listed: [Vec<f64>; N] =
+                std::array::from_fn(|_| Vec::with_capacity(chunk.len()));
             for item in chunk {
-                for (keys, value) in keys.iter_mut().zip(values(item)) {
+                for (listed, value) in listed.iter_mut().zip(values(item)) {
                     if let Some(value) = value.filter(|v| !v.is_nan()) {
-                        keys.push(key_of(value));
+                        listed.push(value);
                     }
                 }
             }
-            keys.map(|keys| ChunkStats {
-                max: keys.iter().max().copied(),
-                sum: ExactSum::of(keys.iter().map(|&key| value_of_key(key))),
-                keys,
+            listed.map(|values| ChunkStats {
+                max: values.iter().map(|&value| key_of(value)).max(),
+                sum: ExactSum::of(&values),
+                values,
             })
         })
         .collect();
@@ -546,10 +550,10 @@ fn summary(chunks: Vec<ChunkStats>) -> AliasingStats {
             count: 0,
         };
     };
-    let n: usize = chunks.iter().map(|chunk| chunk.keys.len()).sum();
+    let n: usize = chunks.iter().map(|chunk| chunk.values.len()).sum();
     let rank = (99 * n).div_ceil(100);
-    let keys: Vec<&[u64]> = chunks.iter().map(|chunk| chunk.keys.as_slice()).collect();
-    let p99 = select(&keys, n, rank - 1);
+    let values: Vec<&[f64]> = chunks.iter().map(|chunk| chunk.values.as_slice()).collect();
+    let p99 = select(&values, n, rank - 1);
     let sum = chunks
         .into_iter()
         .fold(ExactSum::new(), |total, chunk| total.merged(chunk.sum));
@@ -568,20 +572,21 @@ fn summary(chunks: Vec<ChunkStats>) -> AliasingStats {
 
 /// What [`stats_of_each`] keeps of one chunk of one value.
 struct ChunkStats {
-    /// The values' keys ([`key_of`]), in the chunk's order.
-    keys: Vec<u64>,
+    /// The values, in the chunk's order.
+    values: Vec<f64>,
     /// The largest key.
     max: Option<u64>,
     /// The values' exact sum.
     sum: ExactSum,
 }
 
-/// The key of rank `rank` (0 the smallest) among the `count` keys of `chunks`: a most-significant-
-/// digit radix selection. Each pass counts, in parallel, the candidates — the keys that share the
-/// digits decided so far — by their next [`SELECT_DIGIT_BITS`] bits, and keeps the bucket that
-/// holds the rank; once at most [`SELECT_DIRECT`] candidates are left they are gathered and
-/// selected among directly. The counts are integers, so the answer does not depend on the split.
-fn select(chunks: &[&[u64]], count: usize, mut rank: usize) -> u64 {
+/// The key of rank `rank` (0 the smallest) among the keys ([`key_of`]) of the `count` values of
+/// `chunks`: a most-significant-digit radix selection. Each pass counts, in parallel, the
+/// candidates — the keys that share the digits decided so far — by their next
+/// [`SELECT_DIGIT_BITS`] bits, and keeps the bucket that holds the rank; once at most
+/// [`SELECT_DIRECT`] candidates are left they are gathered and selected among directly. The counts
+/// are integers, so the answer does not depend on the split.
+fn select(chunks: &[&[f64]], count: usize, mut rank: usize) -> u64 {
     // The top `decided` bits of the answer are those of `prefix`; `candidates` keys share them.
     let (mut prefix, mut decided, mut candidates) = (0_u64, 0_u32, count);
     let shares = |key: u64, prefix: u64, decided: u32| {
@@ -594,14 +599,28 @@ fn select(chunks: &[&[u64]], count: usize, mut rank: usize) -> u64 {
         let digit_of = |key: u64| usize::try_from((key >> shift) & digit_mask).expect("11 bits");
         let buckets = chunks
             .par_iter()
-            .map(|keys| {
-                let mut buckets = vec![0_usize; 1 << bits];
-                for &key in *keys {
-                    if shares(key, prefix, decided) {
-                        buckets[digit_of(key)] += 1;
+            .map(|values| {
+                // TALLIES counts per bucket, each key adding to the next in turn: a run of keys in
+                // one bucket (neighbouring pixels' values are alike) would otherwise wait on its
+                // own last increment, through memory, key after key.
+                let mut tallies = vec![[0_u32; TALLIES]; 1 << bits];
+                let mut tally = |lane: usize, value: f64| {
+                    let key = key_of(value);
+                    tallies[digit_of(key)][lane] += u32::from(shares(key, prefix, decided));
+                };
+                let mut groups = values.chunks_exact(TALLIES);
+                for group in &mut groups {
+                    for (lane, &value) in group.iter().enumerate() {
+                        tally(lane, value);
                     }
                 }
-                buckets
+                for &value in groups.remainder() {
+                    tally(0, value);
+                }
+                tallies
+                    .into_iter()
+                    .map(|counts| counts.into_iter().map(|c| c as usize).sum::<usize>())
+                    .collect::<Vec<usize>>()
             })
             .reduce(
                 || vec![0; 1 << bits],
@@ -621,9 +640,10 @@ fn select(chunks: &[&[u64]], count: usize, mut rank: usize) -> u64 {
     }
     let mut left: Vec<u64> = chunks
         .par_iter()
-        .flat_map_iter(|keys| {
-            keys.iter()
-                .copied()
+        .flat_map_iter(|values| {
+            values
+                .iter()
+                .map(|&value| key_of(value))
                 .filter(move |&key| shares(key, prefix, decided))
         })
         .collect();

@@ -164,7 +164,7 @@ fn nearest(x: f64, y: f64) -> f64 {
             -(a * gap),
             -(gap * gap * 0.25),
         ];
-        ExactSum::of(terms)
+        ExactSum::of(&terms)
             .value()
             .partial_cmp(&0.0)
             .expect("finite terms")
