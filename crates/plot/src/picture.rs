@@ -92,8 +92,11 @@ impl Image {
                 pixels: pixels.len(),
             });
         }
-        let rows = pixels.chunks(width as usize).rev().flatten().copied();
-        Self::top_down(width, height, rows.collect())
+        let mut rows = Vec::with_capacity(pixels.len());
+        for row in pixels.chunks(width as usize).rev() {
+            rows.extend_from_slice(row);
+        }
+        Self::top_down(width, height, rows)
     }
 
     /// Width in pixels.

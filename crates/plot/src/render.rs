@@ -2,6 +2,7 @@
 //! rendered from the very SVG that is written, so the two never differ; both are byte-identical
 //! across runs and machines because the only font is embedded and nothing reads the clock.
 
+use std::borrow::Cow;
 use std::ops::Range;
 
 use plotters::coord::Shift;
@@ -100,7 +101,14 @@ pub fn render_png(svg: &str) -> Result<Vec<u8>, PlotError> {
 /// pixels as tiny-skia's own encoder, whose default compression took most of a report's drawing
 /// time (docs/benchmarks.md); deterministic.
 pub(crate) fn encode_png(pixmap: &resvg::tiny_skia::Pixmap) -> Result<Vec<u8>, PlotError> {
-    let demultiplied = pixmap.clone().take_demultiplied();
+    // Demultiplying leaves an opaque pixel as it is: an opaque pixmap (every annotated picture,
+    // whose canvas is painted white first) is encoded from its own bytes, not from a copy.
+    let opaque = pixmap.pixels().iter().all(|pixel| pixel.alpha() == u8::MAX);
+    let demultiplied: Cow<'_, [u8]> = if opaque {
+        Cow::Borrowed(pixmap.data())
+    } else {
+        Cow::Owned(pixmap.clone().take_demultiplied())
+    };
     let mut bytes = Vec::new();
     let mut encoder = png::Encoder::new(&mut bytes, pixmap.width(), pixmap.height());
     encoder.set_color(png::ColorType::Rgba);
@@ -336,7 +344,15 @@ mod tests {
              <circle cx=\"20\" cy=\"15\" r=\"9\" fill=\"#c04020\" fill-opacity=\"0.6\"/></svg>",
         )
         .expect("a figure");
-        for pixmap in [pixmap, figure] {
+        // On white, as the annotated pictures are: opaque, encoded from its own bytes.
+        let opaque = rasterise(
+            "<svg width=\"40\" height=\"30\" xmlns=\"http://www.w3.org/2000/svg\">\
+             <rect width=\"40\" height=\"30\" fill=\"white\"/>\
+             <circle cx=\"20\" cy=\"15\" r=\"9\" fill=\"#c04020\" fill-opacity=\"0.6\"/></svg>",
+        )
+        .expect("a figure");
+        assert!(opaque.pixels().iter().all(|pixel| pixel.alpha() == u8::MAX));
+        for pixmap in [pixmap, figure, opaque] {
             let ours = encode_png(&pixmap).expect("encoded");
             let theirs = pixmap.encode_png().expect("encoded");
             let decoded = |png: &[u8]| Pixmap::decode_png(png).expect("a PNG").data().to_vec();
