@@ -31,6 +31,7 @@ use crate::setup::LaneMapping;
 
 /// `bias::depth_slope` of four receivers — points `world`, their windows `window`, normals
 /// `normal` — through `mapping`, the mapping of `map` (module docs).
+#[inline(always)]
 fn depth_slopes(
     map: &ShadowMap,
     mapping: LaneMapping<'_>,
@@ -110,30 +111,14 @@ impl Lookup {
         let DepthComparison::SlopeScaled { constant, slope } = self.bias.comparison else {
             return None;
         };
+        if self.filter != Filter::Nearest {
+            return Some(self.filtered_fractions(map, world, normal, (constant, slope)));
+        }
         let mapping = map.setup.mapping.in_lanes();
         let points = Vectors::of(world);
         let (window, behind) = mapping.windows(points);
         let [x, y, z] = [window.x, window.y, window.z].map(f64x4::to_array);
         let side = f64::from(map.resolution);
-        if self.filter != Filter::Nearest {
-            // Every tap compares with the slope found up front (`Comparison::new`).
-            let slopes = depth_slopes(map, mapping, (points, window), normal);
-            return Some(std::array::from_fn(|k| {
-                if behind[k] {
-                    return 1.0;
-                }
-                let centre = DVec2::new(x[k] * side, y[k] * side);
-                let test = |offset: DVec2| match map.texel_at(centre + offset) {
-                    Some((i, j)) if z[k] <= map.depth(i, j) + constant + slope * slopes[k] => 1.0,
-                    Some(_) => 0.0,
-                    None => 1.0,
-                };
-                match self.filter {
-                    Filter::Pcf { size } => pcf_mean(size, test),
-                    _ => disk_mean(&self.taps, test),
-                }
-            }));
-        }
         // The nearest tap (`Comparison::lit_only_tap`): each lane's texel and base, then the
         // slopes only if a lane's decision needs one.
         let undecided: [Option<f64>; LANES] = std::array::from_fn(|k| {
@@ -155,6 +140,42 @@ impl Lookup {
             }
         }
         Some(lit)
+    }
+
+    /// [`Self::lit_fractions`] through PCF or the jittered disk, whose taps all compare with the
+    /// slope found up front (`Comparison::new`) with the slope-scaled bias
+    /// `(constant, slope)`. Out of line: the nearest filter's path, the default lookup, is then
+    /// compiled on its own with its slopes inlined (docs/benchmarks.md, "The lookup's slopes
+    /// inlined").
+    #[inline(never)]
+    fn filtered_fractions(
+        &self,
+        map: &ShadowMap,
+        world: &[DVec3; LANES],
+        normal: &[DVec3; LANES],
+        (constant, slope): (f64, f64),
+    ) -> [f64; LANES] {
+        let mapping = map.setup.mapping.in_lanes();
+        let points = Vectors::of(world);
+        let (window, behind) = mapping.windows(points);
+        let [x, y, z] = [window.x, window.y, window.z].map(f64x4::to_array);
+        let side = f64::from(map.resolution);
+        let slopes = depth_slopes(map, mapping, (points, window), normal);
+        std::array::from_fn(|k| {
+            if behind[k] {
+                return 1.0;
+            }
+            let centre = DVec2::new(x[k] * side, y[k] * side);
+            let test = |offset: DVec2| match map.texel_at(centre + offset) {
+                Some((i, j)) if z[k] <= map.depth(i, j) + constant + slope * slopes[k] => 1.0,
+                Some(_) => 0.0,
+                None => 1.0,
+            };
+            match self.filter {
+                Filter::Pcf { size } => pcf_mean(size, test),
+                _ => disk_mean(&self.taps, test),
+            }
+        })
     }
 }
 
