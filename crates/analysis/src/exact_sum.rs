@@ -5,11 +5,13 @@
 //! (2015), §2 — wide enough to hold every finite double exactly: the binary digits from 2⁻¹⁰⁷⁴
 //! (the least subnormal) up, in base-2³² digits kept in `i64`s so that a digit absorbs 2³⁰
 //! additions before its carry must be passed on. Each value adds its 53-bit significand, shifted,
-//! into three digits; the accumulated integer is exact, so the total does not depend on the order
-//! of the values, nor on how a parallel sum splits and merges them, and is rounded to the nearest
-//! double (ties to even) once, at the end. That makes a mean independent of the order the values
-//! arrive in without sorting them, and more accurate than any ordered sum (whose error grows with
-//! the count).
+//! into three digits — or, where [`ExactSum::of`] finds a block of values whose exponents lie
+//! within a few binades, the block's significands are first summed as shifted integers in vector
+//! lanes and the total added once. The accumulated integer is exact, so the total does not depend
+//! on the order of the values, nor on how a parallel sum splits and merges them, and is rounded to
+//! the nearest double (ties to even) once, at the end. That makes a mean independent of the order
+//! the values arrive in without sorting them, and more accurate than any ordered sum (whose error
+//! grows with the count).
 
 /// Base-2³² digits: 2046 bit positions of finite doubles (2⁻¹⁰⁷⁴ up to the top of the largest
 /// significand), plus room for the carries of up to 2⁶⁴ values: ⌈(2046 + 53 + 64)/32⌉ = 68, and a
