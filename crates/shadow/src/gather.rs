@@ -53,9 +53,34 @@ pub fn gather_map<T: Sync, U: Copy + Send + Sync>(
     out
 }
 
-/// The items of `items` grouped by `group_of(index, item)`, a group in `0..groups`: group 0's items
-/// in their order, then group 1's, and so on, and each group's length — [`gather`] of every group
-/// at once, in two passes over the items (count, then copy) into one vector.
+/// Items grouped by [`gather_groups`]: every group's items, one group after another, in one
+/// vector.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Groups<T> {
+    /// Group 0's items in their order, then group 1's, and so on.
+    items: Vec<T>,
+    /// Each group's length.
+    lengths: Vec<usize>,
+}
+
+impl<T> Groups<T> {
+    /// Each group's items, in group order.
+    #[must_use]
+    pub fn slices(&self) -> Vec<&[T]> {
+        let mut rest = self.items.as_slice();
+        self.lengths
+            .iter()
+            .map(|&length| {
+                let (group, tail) = rest.split_at(length);
+                rest = tail;
+                group
+            })
+            .collect()
+    }
+}
+
+/// The items of `items` grouped by `group_of(index, item)`, a group in `0..groups` — [`gather`] of
+/// every group at once, in two passes over the items (count, then copy) into one vector.
 ///
 /// # Panics
 /// If `group_of` gives a group outside `0..groups`.
@@ -63,9 +88,12 @@ pub fn gather_groups<T: Copy + Send + Sync>(
     items: &[T],
     groups: usize,
     group_of: impl Fn(usize, &T) -> usize + Sync,
-) -> (Vec<T>, Vec<usize>) {
+) -> Groups<T> {
     let Some(&first) = items.first() else {
-        return (Vec::new(), vec![0; groups]);
+        return Groups {
+            items: Vec::new(),
+            lengths: vec![0; groups],
+        };
     };
     let group = |index: usize, item: &T| Some(group_of(index, item));
     let counts: Vec<Vec<usize>> = items
@@ -100,7 +128,10 @@ pub fn gather_groups<T: Copy + Send + Sync>(
                 written[group] += 1;
             }
         });
-    (out, lengths)
+    Groups {
+        items: out,
+        lengths,
+    }
 }
 
 /// `slice` cut into consecutive pieces of the given `lengths` (which sum to at most its length).
@@ -186,7 +217,10 @@ mod tests {
                             % (groups - 1)
                     }
                 };
-                let (grouped, lengths) = gather_groups(&items, groups, group_of);
+                let gathered = gather_groups(&items, groups, group_of);
+                let slices = gathered.slices();
+                let lengths: Vec<usize> = slices.iter().map(|group| group.len()).collect();
+                let grouped = slices.concat();
                 assert_eq!(lengths.len(), groups);
                 let mut expected = Vec::new();
                 for (group, &length) in lengths.iter().enumerate() {

@@ -316,19 +316,10 @@ pub fn plan(
     let served: Vec<&[DVec3]> = if nears.len() == 1 {
         vec![&samples]
     } else {
-        let lengths;
-        (grouped, lengths) = gather_groups(&samples, nears.len(), |i, _| {
+        grouped = gather_groups(&samples, nears.len(), |i, _| {
             serving_index(&nears, depths[i])
         });
-        let mut rest = grouped.as_slice();
-        lengths
-            .iter()
-            .map(|&length| {
-                let (served, tail) = rest.split_at(length);
-                rest = tail;
-                served
-            })
-            .collect()
+        grouped.slices()
     };
     let reach = caster_reach(input, &frame)?;
     let half_fov = input
